@@ -1,0 +1,150 @@
+// The robot model of the car_sim core: what a URDF (with its <gazebo> extensions) says, fixed after loading.
+// No ROS headers. Units are SI throughout: metres, kilograms, seconds, radians.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "car_sim/diagnostics.hpp"
+
+namespace car_sim {
+
+// An ordered list of (key, text) pairs, as written in the XML. Nested elements are flattened with '/',
+// e.g. "ray/scan/horizontal/samples" -> "360".
+using ParamList = std::vector<std::pair<std::string, std::string>>;
+
+// Looks a key up in a ParamList; the last occurrence wins, as with repeated XML elements.
+const std::string* find_param(const ParamList& params, const std::string& key);
+
+enum class ShapeType { Box, Cylinder, Sphere, Mesh, Plane };
+const char* to_string(ShapeType t);
+
+// A geometric primitive placed in its link frame.
+struct Shape {
+  ShapeType type = ShapeType::Box;
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();      // [m] box edge lengths
+  double radius = 0.0;                                 // [m] cylinder, sphere
+  double length = 0.0;                                 // [m] cylinder, along its local z
+  std::string mesh_uri;                                // mesh file name or package:// URI
+  Eigen::Vector3d mesh_scale = Eigen::Vector3d::Ones();
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();   // plane normal, shape frame
+  Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  // shape frame in the link frame
+};
+
+// A URDF material: name and colour. has_rgba is false when none was given or urdfdom rejected it.
+struct Material {
+  std::string name;
+  bool has_rgba = false;
+  Eigen::Vector4d rgba = Eigen::Vector4d(0.5, 0.5, 0.5, 1.0);
+  std::string texture;
+};
+
+struct Visual {
+  std::string name;
+  Shape shape;
+  Material material;
+};
+
+// Mass properties: inertia about the centre of mass, expressed in the inertial frame.
+struct Inertial {
+  double mass = 0.0;                                          // [kg]
+  Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();   // inertial frame in the link frame
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();          // [kg m^2], inertial frame
+};
+
+// Gazebo surface and rendering settings of one link (<gazebo reference="LINK">).
+// Unset values keep Gazebo's defaults: mu1 = mu2 = 1, kp/kd from the physics engine.
+struct GazeboLinkExt {
+  std::optional<double> mu1, mu2;  // [-] friction coefficients
+  std::optional<double> kp, kd;    // [N/m], [N s/m] contact stiffness and damping
+  std::optional<double> laser_retro;
+  std::optional<bool> self_collide;
+  std::string material;            // e.g. "Gazebo/Yellow"
+  ParamList other;                 // any other element of the block, kept for listing
+};
+
+struct Link {
+  std::string name;
+  std::optional<Inertial> inertial;
+  std::vector<Shape> collisions;
+  std::vector<Visual> visuals;
+  GazeboLinkExt gazebo;
+};
+
+enum class JointType { Fixed, Continuous, Revolute, Prismatic, Floating, Planar };
+const char* to_string(JointType t);
+
+struct JointLimits {
+  double lower = 0.0, upper = 0.0;  // [rad] or [m]
+  double effort = 0.0;              // [N m] or [N]
+  double velocity = 0.0;            // [rad/s] or [m/s]
+};
+
+struct Joint {
+  std::string name;
+  JointType type = JointType::Fixed;
+  std::string parent, child;
+  Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  // child frame in the parent link frame
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitX();           // unit vector, joint frame
+  Eigen::Vector3d axis_as_written = Eigen::Vector3d::UnitX();
+  std::optional<JointLimits> limits;
+  double damping = 0.0, friction = 0.0;
+};
+
+// A <plugin> element: its name, file name and parameters as written.
+struct PluginSpec {
+  std::string name;
+  std::string filename;
+  ParamList params;
+  int line = 0;  // line of <plugin> in the source document
+};
+
+// A <sensor> element inside <gazebo reference="LINK">.
+struct SensorSpec {
+  std::string name;
+  std::string type;   // "ray", "gpu_ray", "depth", "camera", "imu", ...
+  std::string link;   // the link it is attached to
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // sensor frame in the link frame
+  double update_rate = 0.0;   // [Hz]; 0 = every step
+  bool always_on = false;
+  bool visualize = false;
+  ParamList params;           // everything else, flattened, e.g. "camera/image/width"
+  std::vector<PluginSpec> plugins;
+  int line = 0;               // line of <sensor> in the source document
+};
+
+// A robot as the core sees it, with findings made while loading.
+struct RobotModel {
+  std::string name;
+  std::string source;     // file name, or "<string>"
+  std::string root_link;
+  std::vector<Link> links;
+  std::vector<Joint> joints;
+  std::vector<PluginSpec> plugins;   // robot-level <gazebo><plugin>
+  std::vector<SensorSpec> sensors;   // link-level <gazebo reference><sensor>
+  std::vector<Diagnostic> diagnostics;
+
+  const Link* find_link(const std::string& name) const;
+  const Joint* find_joint(const std::string& name) const;
+  // The joint whose child is this link, or nullptr for the root.
+  const Joint* parent_joint(const std::string& link) const;
+  // Pose of a link's frame in the root link's frame, through the joints at zero position.
+  Eigen::Isometry3d link_pose_in_root(const std::string& link) const;
+};
+
+struct LoadOptions {
+  // Throw on the first Error-severity finding (a simulator must); false keeps every finding in
+  // RobotModel::diagnostics (the model check wants them all). Unreadable XML always throws.
+  bool throw_on_error = true;
+};
+
+// Loads a URDF document. Throws LoadError naming source, line (where known), element and reason.
+RobotModel load_urdf_string(const std::string& xml, const std::string& source_name = "<string>",
+                            const LoadOptions& options = LoadOptions());
+RobotModel load_urdf_file(const std::string& path, const LoadOptions& options = LoadOptions());
+
+}  // namespace car_sim

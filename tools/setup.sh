@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Idempotent set-up on Debian 12: Debian's ROS packages, a venv with car's PyPI dependencies, and a catkin
+# workspace in ws/ (git-ignored) holding this repository as ws/src/car. Re-running with everything in
+# place only rebuilds what changed.
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$ROOT"
+
+DEB_PACKAGES=(
+  build-essential cmake catkin python3-catkin-pkg python3-venv python3-pip python3-dev python3-numpy python3-yaml
+  ros-core-dev ros-base-dev libroscpp-dev python3-rospy python3-roslaunch python3-rostest python3-rosgraph
+  liburdfdom-dev liburdfdom-headers-dev libtinyxml2-dev libeigen3-dev pybind11-dev
+  libbullet-dev libsdformat-dev libembree-dev
+  libtf2-ros-dev python3-tf2-ros libsensor-msgs-dev python3-sensor-msgs libnav-msgs-dev python3-nav-msgs
+  libgeometry-msgs-dev python3-geometry-msgs ros-robot-state-publisher joint-state-publisher
+  googletest python3-pytest
+)
+
+missing=()
+for p in "${DEB_PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${#missing[@]} Debian package(s): ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# venv: Debian's python with system site packages (rospy), plus the pinned PyPI packages.
+VENV="$ROOT/.venv"
+if [ ! -x "$VENV/bin/python3" ]; then
+  echo "setup: creating venv $VENV"
+  /usr/bin/python3 -m venv --system-site-packages "$VENV"
+fi
+STAMP="$VENV/.requirements.sha"
+want="$(sha256sum requirements.txt | cut -d' ' -f1)"
+if [ "$(cat "$STAMP" 2>/dev/null)" != "$want" ]; then
+  echo "setup: installing PyPI requirements into the venv"
+  "$VENV/bin/pip" install -q --disable-pip-version-check -r requirements.txt
+  echo "$want" > "$STAMP"
+fi
+
+# catkin workspace: ws/src/car -> this repository.
+mkdir -p ws/src
+[ -L ws/src/car ] || ln -s ../.. ws/src/car
+set +u
+# shellcheck disable=SC1091
+source /opt/ros/noetic/setup.bash 2>/dev/null || true
+set -u
+cd ws
+if [ ! -f build/Makefile ]; then
+  catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON \
+    -DCAR_VENV="$VENV" -j2 > build.log 2>&1 || { tail -n 60 build.log; exit 1; }
+else
+  catkin_make -j2 > build.log 2>&1 || { tail -n 60 build.log; exit 1; }
+fi
+echo "setup: workspace ready; source $ROOT/ws/devel/setup.bash"

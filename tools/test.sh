@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Runs every test tier through catkin: gtest (core), pytest (tools), rostest (launch files).
+# The verdict comes from catkin_test_results, since `catkin_make run_tests` exits 0 on failures.
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+bash "$ROOT/tools/setup.sh"
+cd "$ROOT/ws"
+set +u
+# shellcheck disable=SC1091
+source devel/setup.bash
+set -u
+rm -rf build/test_results
+catkin_make run_tests -j2 > test.log 2>&1 || { tail -n 80 test.log; echo "test: build of the tests failed"; exit 1; }
+grep -E '^\[ *(RUN|  FAILED|  PASSED) *\]|passed|failed|FAILURE|ERROR' test.log | grep -v '^\[ RUN' | tail -n 40 || true
+set +e
+summary="$(catkin_test_results build/test_results 2>&1)"
+rc=$?
+set -e
+echo "$summary" | tail -n 30
+# One closing line: N passed, N failed, N skipped.
+read -r total errors failures skipped < <(echo "$summary" | sed -n 's/^Summary: \([0-9]*\) tests, \([0-9]*\) errors, \([0-9]*\) failures, \([0-9]*\) skipped.*/\1 \2 \3 \4/p' | tail -n 1)
+total=${total:-0}; errors=${errors:-0}; failures=${failures:-0}; skipped=${skipped:-0}
+failed=$((errors + failures))
+echo "$((total - failed - skipped)) passed, $failed failed, $skipped skipped"
+if [ "$rc" -ne 0 ] || [ "$failed" -ne 0 ] || [ "$total" -eq 0 ]; then
+  exit 1
+fi
