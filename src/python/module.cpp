@@ -5,6 +5,7 @@
 
 #include "car_sim/model.hpp"
 #include "car_sim/plugins.hpp"
+#include "car_sim/world.hpp"
 
 namespace py = pybind11;
 using namespace car_sim;
@@ -201,6 +202,27 @@ py::dict config_dict(const ModelConfig& c) {
   return d;
 }
 
+py::dict state_dict(const ModelState& s) {
+  py::dict d;
+  d["position"] = vec(s.pose.translation());
+  const Eigen::Quaterniond q(s.pose.linear());
+  d["orientation"] = py::cast(std::vector<double>{q.x(), q.y(), q.z(), q.w()});
+  const Eigen::Matrix3d& R = s.pose.linear();
+  d["yaw"] = std::atan2(R(1, 0), R(0, 0));
+  d["linear"] = vec(s.linear);
+  d["angular"] = vec(s.angular);
+  return d;
+}
+
+Eigen::Isometry3d pose_of(double x, double y, double z, double roll, double pitch, double yaw) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(x, y, z);
+  T.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  return T;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -259,4 +281,104 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("kind"), "Keys, defaults and units of a plug-in kind.");
   m.def("plugin_kind", &plugin_kind, py::arg("filename"));
+
+  py::class_<World>(m, "World", "A simulated world, stepped in fixed ticks. No ROS master needed.")
+      .def(py::init([](const std::optional<std::string>& world_file, int solver_iterations) {
+             WorldOptions o;
+             o.solver_iterations = solver_iterations;
+             return std::make_unique<World>(world_file ? load_world_file(*world_file) : empty_world(), o);
+           }),
+           py::arg("world_file") = py::none(), py::arg("solver_iterations") = 10,
+           "Load an SDF world file, or Gazebo's empty world (ground plane, sun) when None.")
+      .def_property_readonly("dt", &World::dt, "step size [s]")
+      .def_property_readonly("tick", &World::tick, "steps taken since the start or the last reset")
+      .def_property_readonly("time", &World::time, "simulated time [s] = tick * dt")
+      .def(
+          "spawn_urdf",
+          [](World& w, const std::string& xml, const std::string& name, double x, double y, double z, double roll,
+             double pitch, double yaw, const std::string& ns) {
+            w.spawn(load_urdf_string(xml, name), name, pose_of(x, y, z, roll, pitch, yaw), ns);
+          },
+          py::arg("xml"), py::arg("name"), py::arg("x") = 0.0, py::arg("y") = 0.0, py::arg("z") = 0.0,
+          py::arg("roll") = 0.0, py::arg("pitch") = 0.0, py::arg("yaw") = 0.0, py::arg("robot_namespace") = "",
+          "Spawn a robot from URDF text with its root link at the given pose.")
+      .def("remove", &World::remove, py::arg("name"))
+      .def("step", &World::step, py::arg("n") = 1, py::call_guard<py::gil_scoped_release>(),
+           "Advance n fixed steps (releases the GIL).")
+      .def("reset", &World::reset, "Time to zero, every model where it started (reset_simulation).")
+      .def("reset_poses", &World::reset_poses, "Every model where it started, time goes on (reset_world).")
+      .def("set_cmd_vel", &World::set_cmd_vel, py::arg("robot"), py::arg("v"), py::arg("w"),
+           "Command the robot's diff drive: v [m/s], w [rad/s].")
+      .def("model_names", &World::model_names)
+      .def("robot_names", &World::robot_names)
+      .def("model_state", [](const World& w, const std::string& n) { return state_dict(w.model_state(n)); },
+           py::arg("name"), "Pose and twist of a model's frame, world frame.")
+      .def(
+          "set_model_state",
+          [](World& w, const std::string& n, std::vector<double> position, std::vector<double> orientation,
+             std::vector<double> linear, std::vector<double> angular) {
+            if (position.size() != 3 || orientation.size() != 4 || linear.size() != 3 || angular.size() != 3)
+              throw std::invalid_argument("position, linear, angular need 3 values, orientation 4 (x y z w)");
+            ModelState s;
+            s.pose.translation() = Eigen::Vector3d(position[0], position[1], position[2]);
+            s.pose.linear() = Eigen::Quaterniond(orientation[3], orientation[0], orientation[1], orientation[2])
+                                  .normalized().toRotationMatrix();
+            s.linear = Eigen::Vector3d(linear[0], linear[1], linear[2]);
+            s.angular = Eigen::Vector3d(angular[0], angular[1], angular[2]);
+            w.set_model_state(n, s);
+          },
+          py::arg("name"), py::arg("position"), py::arg("orientation") = std::vector<double>{0, 0, 0, 1},
+          py::arg("linear") = std::vector<double>{0, 0, 0}, py::arg("angular") = std::vector<double>{0, 0, 0})
+      .def(
+          "joint_states",
+          [](const World& w, const std::string& robot) {
+            py::dict d;
+            for (const auto& j : w.joint_states(robot)) d[py::str(j.name)] = py::make_tuple(j.position, j.velocity);
+            return d;
+          },
+          py::arg("robot"), "{joint: (position, velocity)} for every non-fixed joint.")
+      .def(
+          "link_pose",
+          [](const World& w, const std::string& robot, const std::string& link) {
+            ModelState s;
+            s.pose = w.link_pose(robot, link);
+            py::dict d = state_dict(s);
+            d.attr("pop")("linear");
+            d.attr("pop")("angular");
+            return d;
+          },
+          py::arg("robot"), py::arg("link"))
+      .def(
+          "contacts",
+          [](const World& w) {
+            py::list out;
+            for (const auto& c : w.contacts()) {
+              py::dict d;
+              d["a"] = c.a;
+              d["b"] = c.b;
+              d["position"] = vec(c.position);
+              d["normal_force"] = c.normal_force;
+              out.append(d);
+            }
+            return out;
+          },
+          "Contacts of the last step with a positive normal force [N].")
+      .def(
+          "take_odometry",
+          [](World& w) {
+            py::list out;
+            for (const auto& o : w.take_odometry()) {
+              ModelState s;
+              s.pose = o.pose;
+              s.linear = o.linear;
+              s.angular = o.angular;
+              py::dict d = state_dict(s);
+              d["model"] = o.model;
+              d["tick"] = o.tick;
+              d["time"] = static_cast<double>(o.tick) * w.dt();
+              out.append(d);
+            }
+            return out;
+          },
+          "Odometry samples produced since the last call (base twist in the base frame).");
 }

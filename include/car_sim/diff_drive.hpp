@@ -1,0 +1,50 @@
+// libgazebo_ros_diff_drive.so: configuration and the plain maths of the controller (no physics, no ROS).
+#pragma once
+
+#include <string>
+
+#include "car_sim/plugins.hpp"
+
+namespace car_sim {
+
+struct DiffDriveConfig {
+  std::string plugin_name;
+  std::string robot_namespace;   // resolved: "" = global names, else "ns" (no leading slash)
+  std::string command_topic = "cmd_vel";
+  std::string odometry_topic = "odom";
+  std::string odometry_frame = "odom";
+  std::string robot_base_frame = "base_footprint";
+  double wheel_separation = 0.34;   // [m]
+  double wheel_diameter = 0.15;     // [m]
+  double wheel_torque = 5.0;        // [N m] motor cap
+  double wheel_acceleration = 0.0;  // [m/s^2] of wheel surface speed; 0 = unlimited
+  double update_rate = 100.0;       // [Hz]; 0 = every step
+  bool encoder_odometry = false;    // odometrySource encoder (else world)
+  bool publish_tf = true;           // false: no /odom at all (upstream quirk)
+  bool publish_odom_tf = true;
+  bool publish_wheel_tf = false;
+  bool publish_wheel_joint_state = false;
+  std::string left_joint = "left_joint";
+  std::string right_joint = "right_joint";
+  std::string ros_debug_level = "na";
+
+  // From a resolved plug-in; model_name fills an absent or empty robotNamespace, "/" means global.
+  static DiffDriveConfig from(const PluginConfig& c, const std::string& model_name);
+};
+
+// Wheel surface speeds [m/s] for a body twist: left = v - w sep/2, right = v + w sep/2.
+void wheel_speeds(double v, double w, double separation, double* left, double* right);
+
+// Moves current toward target by at most max_step (max_step <= 0: jump to target).
+double rate_limit(double current, double target, double max_step);
+
+// Planar pose integrated from wheel travel, as the plug-in's encoder odometry does.
+struct EncoderOdometry {
+  double x = 0.0, y = 0.0, theta = 0.0;  // [m], [m], [rad], odometry frame
+  double v = 0.0, w = 0.0;               // [m/s], [rad/s], last step
+
+  // sl, sr: wheel travel [m] during dt [s]. Keeps the sign of v when reversing (fix of upstream's |v|).
+  void integrate(double sl, double sr, double separation, double dt);
+};
+
+}  // namespace car_sim

@@ -1,0 +1,247 @@
+// SDF worlds through sdformat: models, links, collision and visual shapes with surface friction and
+// materials, gravity, step size, the sun, and the <state> block's poses.
+#include <sdf/sdf.hh>
+
+#include <fstream>
+#include <sstream>
+
+#include "car_sim/world.hpp"
+
+namespace car_sim {
+
+namespace {
+
+Eigen::Isometry3d to_iso(const ignition::math::Pose3d& p) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(p.Pos().X(), p.Pos().Y(), p.Pos().Z());
+  T.linear() = Eigen::Quaterniond(p.Rot().W(), p.Rot().X(), p.Rot().Y(), p.Rot().Z()).normalized().toRotationMatrix();
+  return T;
+}
+
+[[noreturn]] void fail_with(const std::string& source, const sdf::Errors& errors) {
+  const sdf::Error& e = errors.front();
+  std::string reason = e.Message();
+  if (errors.size() > 1) reason += " (and " + std::to_string(errors.size() - 1) + " more)";
+  throw LoadError(e.FilePath() ? *e.FilePath() : source, e.LineNumber() ? *e.LineNumber() : 0,
+                  e.XmlPath() ? *e.XmlPath() : "", reason);
+}
+
+std::optional<Shape> to_shape(const sdf::Geometry& g, const std::string& where, WorldDescription* desc) {
+  Shape s;
+  switch (g.Type()) {
+    case sdf::GeometryType::BOX:
+      s.type = ShapeType::Box;
+      s.size = Eigen::Vector3d(g.BoxShape()->Size().X(), g.BoxShape()->Size().Y(), g.BoxShape()->Size().Z());
+      return s;
+    case sdf::GeometryType::CYLINDER:
+      s.type = ShapeType::Cylinder;
+      s.radius = g.CylinderShape()->Radius();
+      s.length = g.CylinderShape()->Length();
+      return s;
+    case sdf::GeometryType::SPHERE:
+      s.type = ShapeType::Sphere;
+      s.radius = g.SphereShape()->Radius();
+      return s;
+    case sdf::GeometryType::PLANE: {
+      s.type = ShapeType::Plane;
+      const auto n = g.PlaneShape()->Normal();
+      s.normal = Eigen::Vector3d(n.X(), n.Y(), n.Z()).normalized();
+      s.size = Eigen::Vector3d(g.PlaneShape()->Size().X(), g.PlaneShape()->Size().Y(), 0.0);
+      return s;
+    }
+    case sdf::GeometryType::MESH:
+      s.type = ShapeType::Mesh;
+      s.mesh_uri = g.MeshShape()->Uri();
+      s.mesh_scale = Eigen::Vector3d(g.MeshShape()->Scale().X(), g.MeshShape()->Scale().Y(), g.MeshShape()->Scale().Z());
+      return s;
+    default:
+      desc->diagnostics.push_back({Severity::Warning, "geometry-unsupported", where,
+                                   "geometry type not simulated by car; ignored", 0});
+      return std::nullopt;
+  }
+}
+
+SurfaceFriction read_friction(const sdf::Collision& c) {
+  SurfaceFriction f;
+  sdf::ElementPtr e = c.Element();
+  for (const char* tag : {"surface", "friction", "ode"}) {
+    if (!e || !e->HasElement(tag)) return f;
+    e = e->GetElement(tag);
+  }
+  if (e->HasElement("mu")) f.mu = e->Get<double>("mu");
+  if (e->HasElement("mu2")) f.mu2 = e->Get<double>("mu2");
+  return f;
+}
+
+Eigen::Vector4d rgba(const ignition::math::Color& c) { return Eigen::Vector4d(c.R(), c.G(), c.B(), c.A()); }
+
+WorldLink read_link(const sdf::Link& l, const std::string& model, WorldDescription* desc) {
+  WorldLink wl;
+  wl.name = l.Name();
+  ignition::math::Pose3d p;
+  l.SemanticPose().Resolve(p);  // relative to the model frame
+  wl.pose = to_iso(p);
+  const auto& in = l.Inertial();
+  if (l.Element() && l.Element()->HasElement("inertial")) {
+    Inertial ci;
+    ci.mass = in.MassMatrix().Mass();
+    ci.origin = to_iso(in.Pose());
+    const auto moi = in.MassMatrix().Moi();
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) ci.inertia(r, c) = moi(r, c);
+    wl.inertial = ci;
+  }
+  const std::string where = "model[" + model + "]/link[" + l.Name() + "]";
+  for (uint64_t i = 0; i < l.CollisionCount(); ++i) {
+    const sdf::Collision* c = l.CollisionByIndex(i);
+    auto shape = to_shape(*c->Geom(), where + "/collision[" + c->Name() + "]", desc);
+    if (!shape) continue;
+    ignition::math::Pose3d cp;
+    c->SemanticPose().Resolve(cp);  // relative to the link
+    shape->origin = to_iso(cp);
+    wl.collisions.push_back({c->Name(), *shape, read_friction(*c)});
+  }
+  for (uint64_t i = 0; i < l.VisualCount(); ++i) {
+    const sdf::Visual* v = l.VisualByIndex(i);
+    auto shape = to_shape(*v->Geom(), where + "/visual[" + v->Name() + "]", desc);
+    if (!shape) continue;
+    ignition::math::Pose3d vp;
+    v->SemanticPose().Resolve(vp);
+    shape->origin = to_iso(vp);
+    WorldVisual wv;
+    wv.name = v->Name();
+    wv.shape = *shape;
+    if (const sdf::Material* m = v->Material()) {
+      wv.script_name = m->ScriptName();
+      const sdf::ElementPtr me = m->Element();
+      if (me && me->HasElement("diffuse")) {
+        wv.material.has_rgba = true;
+        wv.material.rgba = rgba(m->Diffuse());
+      }
+      if (me && me->HasElement("ambient")) {
+        wv.has_ambient = true;
+        wv.ambient = rgba(m->Ambient());
+      }
+      wv.material.name = wv.script_name;
+    }
+    wl.visuals.push_back(std::move(wv));
+  }
+  return wl;
+}
+
+// Gazebo sets the world to its <state> when it loads: model poses there win over the models' own.
+void apply_state(const sdf::World& w, WorldDescription* desc) {
+  sdf::ElementPtr we = w.Element();
+  if (!we || !we->HasElement("state")) return;
+  for (sdf::ElementPtr st = we->GetElement("state"); st; st = st->GetNextElement("state")) {
+    if (!st->HasElement("model")) continue;
+    for (sdf::ElementPtr me = st->GetElement("model"); me; me = me->GetNextElement("model")) {
+      const std::string name = me->Get<std::string>("name");
+      if (!me->HasElement("pose")) continue;
+      for (auto& m : desc->models)
+        if (m.name == name) m.pose = to_iso(me->Get<ignition::math::Pose3d>("pose"));
+    }
+  }
+}
+
+WorldDescription convert(const sdf::Root& root, const std::string& source) {
+  const sdf::World* w = root.WorldCount() > 0 ? root.WorldByIndex(0) : nullptr;
+  if (!w) throw LoadError(source, 0, "sdf", "no <world> in the file");
+  WorldDescription d;
+  d.source = source;
+  d.name = w->Name();
+  const auto g = w->Gravity();
+  d.gravity = Eigen::Vector3d(g.X(), g.Y(), g.Z());
+  if (w->PhysicsCount() > 0) {
+    const sdf::Physics* ph = w->PhysicsDefault();
+    d.step_size = ph->MaxStepSize();
+    d.real_time_factor = ph->RealTimeFactor();
+  }
+  if (!(d.step_size > 0.0)) throw LoadError(source, 0, "world/physics/max_step_size", "step size must be > 0");
+  for (uint64_t i = 0; i < w->LightCount(); ++i) {
+    const sdf::Light* l = w->LightByIndex(i);
+    if (l->Type() != sdf::LightType::DIRECTIONAL) continue;
+    ignition::math::Pose3d lp;
+    l->SemanticPose().Resolve(lp);
+    const auto dir = lp.Rot().RotateVector(l->Direction());
+    if (dir.Length() > 0) d.sun_direction = Eigen::Vector3d(dir.X(), dir.Y(), dir.Z()).normalized();
+    break;
+  }
+  for (uint64_t i = 0; i < w->ModelCount(); ++i) {
+    const sdf::Model* m = w->ModelByIndex(i);
+    WorldModelDesc md;
+    md.name = m->Name();
+    md.is_static = m->Static();
+    ignition::math::Pose3d mp;
+    m->SemanticPose().Resolve(mp);
+    md.pose = to_iso(mp);
+    if (m->ModelCount() > 0)
+      d.diagnostics.push_back({Severity::Warning, "nested-model", "model[" + md.name + "]",
+                               "nested models are not simulated yet; flatten the world first", 0});
+    for (uint64_t k = 0; k < m->LinkCount(); ++k) md.links.push_back(read_link(*m->LinkByIndex(k), md.name, &d));
+    d.models.push_back(std::move(md));
+  }
+  apply_state(*w, &d);
+  for (const auto& m : d.models) {
+    if (m.is_static) continue;
+    for (const auto& l : m.links) {
+      const std::string where = "model[" + m.name + "]/link[" + l.name + "]/inertial";
+      if (!l.inertial || !(l.inertial->mass > 0.0))
+        throw LoadError(source, 0, where, "a dynamic link needs a mass > 0");
+    }
+  }
+  return d;
+}
+
+}  // namespace
+
+const WorldModelDesc* WorldDescription::find_model(const std::string& n) const {
+  for (const auto& m : models)
+    if (m.name == n) return &m;
+  return nullptr;
+}
+
+WorldDescription load_world_file(const std::string& path) {
+  std::ifstream probe(path);
+  if (!probe) throw LoadError(path, 0, "", "cannot open file");
+  sdf::Root root;
+  const sdf::Errors errors = root.Load(path);
+  if (!errors.empty()) fail_with(path, errors);
+  return convert(root, path);
+}
+
+WorldDescription load_world_string(const std::string& xml, const std::string& source_name) {
+  sdf::Root root;
+  const sdf::Errors errors = root.LoadSdfString(xml);
+  if (!errors.empty()) fail_with(source_name, errors);
+  return convert(root, source_name);
+}
+
+WorldDescription empty_world() {
+  return load_world_string(R"(<?xml version="1.0"?>
+<sdf version="1.7">
+  <world name="default">
+    <light name="sun" type="directional">
+      <pose>0 0 10 0 0 0</pose>
+      <direction>-0.5 0.1 -0.9</direction>
+    </light>
+    <model name="ground_plane">
+      <static>true</static>
+      <link name="link">
+        <collision name="collision">
+          <geometry><plane><normal>0 0 1</normal><size>100 100</size></plane></geometry>
+          <surface><friction><ode><mu>100</mu><mu2>50</mu2></ode></friction></surface>
+        </collision>
+        <visual name="visual">
+          <geometry><plane><normal>0 0 1</normal><size>100 100</size></plane></geometry>
+          <material><script><uri>file://media/materials/scripts/gazebo.material</uri><name>Gazebo/Grey</name></script></material>
+        </visual>
+      </link>
+    </model>
+    <physics type="ode"><max_step_size>0.001</max_step_size><real_time_factor>1</real_time_factor></physics>
+  </world>
+</sdf>)",
+                           "empty.world");
+}
+
+}  // namespace car_sim
