@@ -1,0 +1,236 @@
+// The core world: values worked out by hand for the seed car in box_house (worlds/box_house.world).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "car_sim/world.hpp"
+#include "test_util.hpp"
+
+using namespace car_sim;
+
+namespace {
+
+const RobotModel& car() {
+  static const RobotModel m = load_urdf_string(read_text("test/data/car_camera_lidar04.urdf"), "car04");
+  return m;
+}
+
+Eigen::Isometry3d at(double x, double y, double yaw) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(x, y, 0.0);
+  T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  return T;
+}
+
+std::unique_ptr<World> box_house_with_car(double x = 0.0, double y = 0.0, double yaw = 0.0) {
+  auto w = std::make_unique<World>(load_world_file(std::string(CAR_SOURCE_DIR) + "/worlds/box_house.world"));
+  w->spawn(car(), "mycar", at(x, y, yaw));
+  return w;
+}
+
+std::string load_error(const std::string& rel) {
+  try {
+    load_world_file(data_path(rel));
+  } catch (const LoadError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(WorldLoad, BoxHouseModelsStepAndGravity) {
+  const WorldDescription d = load_world_file(std::string(CAR_SOURCE_DIR) + "/worlds/box_house.world");
+  EXPECT_DOUBLE_EQ(d.step_size, 0.001);
+  EXPECT_DOUBLE_EQ(d.gravity.z(), -9.8);
+  ASSERT_EQ(d.models.size(), 8u);
+  EXPECT_TRUE(d.find_model("box_house")->is_static);
+  EXPECT_FALSE(d.find_model("unit_box")->is_static);
+  EXPECT_EQ(d.find_model("box_house")->links.size(), 4u);
+}
+
+TEST(WorldLoad, StatePosesWinOverModelPoses) {
+  // unit_box_0 is declared after <state>, at y = -2.00354; the state says y = -2.00353, z = 0.499995
+  const WorldDescription d = load_world_file(std::string(CAR_SOURCE_DIR) + "/worlds/box_house.world");
+  const auto& p = d.find_model("unit_box_0")->pose.translation();
+  EXPECT_DOUBLE_EQ(p.y(), -2.00353);
+  EXPECT_DOUBLE_EQ(p.z(), 0.499995);
+}
+
+TEST(WorldLoad, GroundFrictionFromSurface) {
+  const WorldDescription d = load_world_file(std::string(CAR_SOURCE_DIR) + "/worlds/box_house.world");
+  const auto& c = d.find_model("ground_plane")->links[0].collisions[0];
+  EXPECT_EQ(c.shape.type, ShapeType::Plane);
+  EXPECT_DOUBLE_EQ(c.friction.mu, 100.0);
+  EXPECT_DOUBLE_EQ(c.friction.mu2, 50.0);
+}
+
+TEST(WorldLoad, WallPoseFromModelAndLink) {
+  // Wall_2: model at (-1.97643, 0.059964), link at (6.425, 0) turned by -pi/2 -> x = 4.44857
+  const WorldDescription d = load_world_file(std::string(CAR_SOURCE_DIR) + "/worlds/box_house.world");
+  const auto* m = d.find_model("box_house");
+  const Eigen::Isometry3d T = m->pose * m->links[1].pose;
+  EXPECT_NEAR(T.translation().x(), 4.44857, 1e-5);
+  EXPECT_NEAR(T.translation().y(), 0.059964, 1e-5);
+}
+
+TEST(WorldPhysics, FreeFallFollowsSymplecticEuler) {
+  World w(load_world_file(data_path("freefall.world")));
+  w.step(250);  // 0.5 s at dt 0.002
+  // v_n = -g n dt, z_n = z0 - g dt^2 n (n + 1) / 2
+  const double n = 250, dt = 0.002, g = 5.0;
+  EXPECT_NEAR(w.model_state("ball").pose.translation().z(), 1.0 - g * dt * dt * n * (n + 1) / 2, 1e-9);
+  EXPECT_NEAR(w.model_state("ball").linear.z(), -g * n * dt, 1e-9);
+  EXPECT_DOUBLE_EQ(w.time(), 0.5);
+}
+
+TEST(WorldPhysics, CarRestsOnWheelsAndCasters) {
+  auto w = box_house_with_car();
+  w->step(2000);
+  // base_link: wheel radius 0.0325 + (base_length / 2 + lidi) - wheel_radius... = 0.055 above the ground
+  EXPECT_NEAR(w->link_pose("mycar", "base_link").translation().z(), 0.055, 0.002);
+}
+
+TEST(WorldPhysics, ZeroCommandDriftsLessThanAMillimetreIn10s) {
+  auto w = box_house_with_car();
+  w->step(1000);
+  const Eigen::Vector3d p0 = w->model_state("mycar").pose.translation();
+  w->step(10000);
+  EXPECT_LT((w->model_state("mycar").pose.translation() - p0).norm(), 1e-3);
+}
+
+TEST(WorldPhysics, StraightRampCoversExpectedDistance) {
+  auto w = box_house_with_car();
+  w->step(500);
+  const Eigen::Vector3d p0 = w->model_state("mycar").pose.translation();
+  w->set_cmd_vel("mycar", 0.5, 0.0);
+  w->step(4000);
+  // 0.5 m/s for 4 s minus the ramp at wheelAcceleration 1.8 m/s^2: 0.5 * 4 - 0.5^2 / (2 * 1.8)
+  EXPECT_NEAR((w->model_state("mycar").pose.translation() - p0).norm(), 0.5 * 4 - 0.25 / 3.6, 0.03);
+}
+
+TEST(WorldPhysics, WallStopsTheCar) {
+  // Wall_2's inner face is at x = 4.44857 - 0.075; the car's front (base radius 0.1) stops there.
+  auto w = box_house_with_car(2.0, 0.0, 0.0);
+  w->set_cmd_vel("mycar", 1.0, 0.0);
+  double max_x = 0.0;
+  for (int i = 0; i < 6000; ++i) {
+    w->step();
+    max_x = std::max(max_x, w->model_state("mycar").pose.translation().x());
+  }
+  EXPECT_LT(max_x, 4.44857 - 0.075 - 0.1 + 0.002);
+  EXPECT_GT(max_x, 4.44857 - 0.075 - 0.1 - 0.01);  // it did reach the wall
+}
+
+TEST(WorldPhysics, CarPushesUnitBox) {
+  // unit_box_0 (1 kg, 1 m cube) at x = -4.96407; the car comes from x = -3.5 heading -x
+  auto w = box_house_with_car(-3.5, -2.00353, M_PI);
+  const double x0 = w->model_state("unit_box_0").pose.translation().x();
+  w->set_cmd_vel("mycar", 0.5, 0.0);
+  w->step(4000);
+  EXPECT_LT(w->model_state("unit_box_0").pose.translation().x(), x0 - 0.5);
+}
+
+TEST(WorldPhysics, EncoderOdometryFollowsGroundTruthOverALap) {
+  RobotModel m = car();
+  for (auto& p : m.plugins)
+    if (p.filename == "libgazebo_ros_diff_drive.so") p.params.emplace_back("odometrySource", "encoder");
+  World w(load_world_file(std::string(CAR_SOURCE_DIR) + "/worlds/box_house.world"));
+  w.spawn(m, "mycar", Eigen::Isometry3d::Identity());
+  w.set_cmd_vel("mycar", 1.0, 1.0);
+  double worst = 0.0;
+  for (int i = 0; i < 6284; i += 10) {
+    w.step(10);
+    const Eigen::Vector3d truth = w.model_state("mycar").pose.translation();
+    for (const auto& o : w.take_odometry())
+      worst = std::max(worst, (o.pose.translation() - Eigen::Vector3d(truth.x(), truth.y(), 0)).norm());
+  }
+  EXPECT_LT(worst, 0.05);
+}
+
+TEST(WorldPhysics, SameCommandsSameOdometryBitForBit) {
+  std::vector<double> runs[2];
+  for (auto& run : runs) {
+    auto w = box_house_with_car();
+    w->set_cmd_vel("mycar", 1.0, 0.7);
+    w->step(1500);
+    w->set_cmd_vel("mycar", -0.3, -1.0);
+    w->step(1500);
+    for (const auto& o : w->take_odometry()) {
+      run.push_back(o.pose.translation().x());
+      run.push_back(o.pose.translation().y());
+      run.push_back(o.linear.x());
+    }
+  }
+  ASSERT_EQ(runs[0].size(), runs[1].size());
+  EXPECT_EQ(0, std::memcmp(runs[0].data(), runs[1].data(), runs[0].size() * sizeof(double)));
+}
+
+TEST(WorldPhysics, ResetReplaysBitForBit) {
+  auto w = box_house_with_car();
+  w->set_cmd_vel("mycar", 1.0, 1.0);
+  w->step(1000);
+  const Eigen::Vector3d first = w->model_state("mycar").pose.translation();
+  w->reset();
+  EXPECT_EQ(w->tick(), 0u);
+  EXPECT_NEAR(w->model_state("mycar").pose.translation().norm(), 0.0, 1e-12);
+  w->set_cmd_vel("mycar", 1.0, 1.0);
+  w->step(1000);
+  EXPECT_EQ(w->model_state("mycar").pose.translation(), first);
+}
+
+TEST(WorldPhysics, OdometryAtUpdateRate) {
+  auto w = box_house_with_car();
+  w->step(1000);
+  // updateRate 100 Hz at dt 1 ms: every 10th tick
+  const auto odom = w->take_odometry();
+  ASSERT_EQ(odom.size(), 100u);
+  EXPECT_EQ(odom[0].tick, 10u);
+  EXPECT_EQ(odom[1].tick, 20u);
+}
+
+TEST(WorldModels, SpawnTwiceFails) {
+  auto w = box_house_with_car();
+  EXPECT_THROW(w->spawn(car(), "mycar", at(1, 1, 0)), std::invalid_argument);
+  EXPECT_THROW(w->spawn(car(), "unit_box", at(1, 1, 0)), std::invalid_argument);
+}
+
+TEST(WorldModels, RemoveThenGone) {
+  auto w = box_house_with_car();
+  w->remove("unit_box");
+  w->remove("mycar");
+  EXPECT_FALSE(w->has_model("unit_box"));
+  EXPECT_FALSE(w->has_model("mycar"));
+  w->reset();
+  EXPECT_FALSE(w->has_model("unit_box"));  // as in Gazebo, a reset does not bring a deleted model back
+  EXPECT_THROW(w->remove("nothing"), std::invalid_argument);
+}
+
+TEST(WorldModels, SetModelStateMovesTheCar) {
+  auto w = box_house_with_car();
+  ModelState s;
+  s.pose = at(1.0, -1.0, 0.5);
+  w->set_model_state("mycar", s);
+  EXPECT_NEAR((w->model_state("mycar").pose.translation() - Eigen::Vector3d(1, -1, 0)).norm(), 0.0, 1e-12);
+}
+
+TEST(WorldModels, NonFiniteCommandRejected) {
+  auto w = box_house_with_car();
+  EXPECT_THROW(w->set_cmd_vel("mycar", std::nan(""), 0.0), std::invalid_argument);
+  EXPECT_THROW(w->set_cmd_vel("mycar", 0.0, INFINITY), std::invalid_argument);
+}
+
+TEST(WorldErrors, MissingFile) {
+  EXPECT_EQ(load_error("nope.world"), data_path("nope.world") + ": cannot open file");
+}
+
+TEST(WorldErrors, DynamicLinkWithoutMass) {
+  EXPECT_EQ(load_error("bad/massless.world"),
+            data_path("bad/massless.world") + ": model[crate]/link[body]/inertial: a dynamic link needs a mass > 0");
+}
+
+TEST(WorldErrors, MalformedSdfNamesTheFile) {
+  const std::string msg = load_error("bad/malformed.world");
+  EXPECT_EQ(msg.rfind(data_path("bad/malformed.world"), 0), 0u) << msg;
+}

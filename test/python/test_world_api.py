@@ -1,0 +1,105 @@
+"""The Python API (car._core.World): the seed's circle without a ROS master, and its errors."""
+import math
+import os
+import threading
+
+import numpy as np
+import pytest
+
+from car import _core
+from conftest import DATA, ROOT
+
+BOX_HOUSE = os.path.join(ROOT, 'worlds', 'box_house.world')
+
+
+@pytest.fixture(scope='module')
+def car_xml():
+    with open(os.path.join(DATA, 'car_camera_lidar04.urdf')) as f:
+        return f.read()
+
+
+def fit_circle(points):
+    """Least-squares circle through 2-D points: (centre, radius)."""
+    P = np.asarray(points)
+    A = np.c_[2 * P, np.ones(len(P))]
+    c = np.linalg.lstsq(A, (P ** 2).sum(1), rcond=None)[0]
+    return c[:2], math.sqrt(c[2] + c[0] ** 2 + c[1] ** 2)
+
+
+def test_seed_command_drives_a_circle_of_radius_v_over_w(car_xml):
+    w = _core.World(BOX_HOUSE)
+    w.spawn_urdf(car_xml, 'mycar')
+    w.set_cmd_vel('mycar', 1.0, 1.0)
+    w.step(1000)  # wheels at speed (ramp 1.1 m/s / 1.8 m/s^2 = 0.61 s)
+    start = w.model_state('mycar')['position']
+    points = []
+    for _ in range(629):  # 2 pi s in 10 ms steps
+        w.step(10)
+        points.append(w.model_state('mycar')['position'][:2])
+    _, radius = fit_circle(points)
+    assert radius == pytest.approx(1.0, abs=0.05)  # r = v / w
+    assert math.dist(points[-1], start[:2]) < 0.10
+
+
+def test_joint_states_cover_every_moving_joint(car_xml):
+    w = _core.World()
+    w.spawn_urdf(car_xml, 'mycar')
+    assert sorted(w.joint_states('mycar')) == ['back2link', 'front2link', 'left2link', 'right2link']
+
+
+def test_wheels_turn_at_v_over_r(car_xml):
+    w = _core.World()
+    w.spawn_urdf(car_xml, 'mycar')
+    w.set_cmd_vel('mycar', 0.5, 0.0)
+    w.step(2000)
+    # 0.5 m/s on wheels of radius 0.0325 m
+    assert w.joint_states('mycar')['left2link'][1] == pytest.approx(0.5 / 0.0325, rel=1e-3)
+
+
+def test_reset_returns_to_the_start(car_xml):
+    w = _core.World()
+    w.spawn_urdf(car_xml, 'mycar', x=1.0, y=2.0, yaw=0.5)
+    w.set_cmd_vel('mycar', 1.0, 0.0)
+    w.step(500)
+    w.reset()
+    assert w.tick == 0
+    assert w.model_state('mycar')['position'] == pytest.approx([1.0, 2.0, 0.0], abs=1e-9)
+    assert w.model_state('mycar')['yaw'] == pytest.approx(0.5)
+
+
+def test_step_releases_the_gil(car_xml):
+    w = _core.World()
+    w.spawn_urdf(car_xml, 'mycar')
+    worker = threading.Thread(target=w.step, args=(20000,))
+    count = 0
+    worker.start()
+    while worker.is_alive():
+        count += 1
+    worker.join()
+    assert w.tick == 20000
+    assert count > 1000  # this thread kept running Python while the worker stepped
+
+
+def test_spawning_a_name_twice_is_a_value_error(car_xml):
+    w = _core.World()
+    w.spawn_urdf(car_xml, 'mycar')
+    with pytest.raises(ValueError, match="model 'mycar' exists already"):
+        w.spawn_urdf(car_xml, 'mycar')
+
+
+def test_bad_urdf_is_a_load_error():
+    w = _core.World()
+    with pytest.raises(_core.LoadError, match='malformed XML'):
+        w.spawn_urdf('<robot name="x"><link name="a"></robot>', 'broken')
+
+
+def test_missing_world_is_a_load_error():
+    with pytest.raises(_core.LoadError, match='nope.world: cannot open file'):
+        _core.World(os.path.join(DATA, 'nope.world'))
+
+
+def test_nan_command_is_a_value_error(car_xml):
+    w = _core.World()
+    w.spawn_urdf(car_xml, 'mycar')
+    with pytest.raises(ValueError, match='finite'):
+        w.set_cmd_vel('mycar', float('nan'), 0.0)
