@@ -5,6 +5,6 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bash "$ROOT/tools/setup.sh"
 set +u
 # shellcheck disable=SC1091
-source "$ROOT/ws/devel/setup.bash"
+source "$ROOT/.ws/devel/setup.bash"
 set -u
-exec "$ROOT/ws/devel/lib/car/check_model" "$ROOT/urdf/car_camera_lidar04.xacro" "$@"
+exec "$ROOT/.ws/devel/lib/car/check_model" "$ROOT/urdf/car_camera_lidar04.xacro" "$@"

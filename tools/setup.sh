@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Idempotent set-up on Debian 12: Debian's ROS packages, a venv with car's PyPI dependencies, and a catkin
-# workspace in ws/ (git-ignored) holding this repository as ws/src/car. Re-running with everything in
+# workspace in .ws/ (git-ignored) holding this repository as .ws/src/car. Re-running with everything in
 # place only rebuilds what changed.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -42,18 +42,18 @@ if [ "$(cat "$STAMP" 2>/dev/null)" != "$want" ]; then
   echo "$want" > "$STAMP"
 fi
 
-# catkin workspace: ws/src/car -> this repository.
-mkdir -p ws/src
-[ -L ws/src/car ] || ln -s ../.. ws/src/car
+# catkin workspace: .ws/src/car -> this repository.
+mkdir -p .ws/src
+[ -L .ws/src/car ] || ln -s ../.. .ws/src/car
 set +u
 # shellcheck disable=SC1091
 source /opt/ros/noetic/setup.bash 2>/dev/null || true
 set -u
-cd ws
+cd .ws
 if [ ! -f build/Makefile ]; then
   catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON \
     -DCAR_VENV="$VENV" -j2 > build.log 2>&1 || { tail -n 60 build.log; exit 1; }
 else
   catkin_make -j2 > build.log 2>&1 || { tail -n 60 build.log; exit 1; }
 fi
-echo "setup: workspace ready; source $ROOT/ws/devel/setup.bash"
+echo "setup: workspace ready; source $ROOT/.ws/devel/setup.bash"

@@ -4,7 +4,7 @@
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bash "$ROOT/tools/setup.sh"
-cd "$ROOT/ws"
+cd "$ROOT/.ws"
 set +u
 # shellcheck disable=SC1091
 source devel/setup.bash

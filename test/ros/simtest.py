@@ -1,0 +1,77 @@
+"""Helpers shared by car's rostests: drive the simulator in sim time and record what it publishes."""
+import math
+import threading
+
+import numpy as np
+import rospy
+from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry
+from std_srvs.srv import Empty
+
+
+class Recorder:
+    """Keeps every message of a topic, in arrival order, with its header stamp in seconds."""
+
+    def __init__(self, topic, msg_type=Odometry):
+        self.msgs = []
+        self.lock = threading.Lock()
+        self.sub = rospy.Subscriber(topic, msg_type, self._cb, queue_size=None, tcp_nodelay=True)
+
+    def _cb(self, msg):
+        with self.lock:
+            self.msgs.append(msg)
+
+    def wait_connected(self, timeout=30.0):
+        """Waits (wall time) for the publisher to connect, since sim time stands still while paused."""
+        import time
+        deadline = time.time() + timeout
+        while self.sub.get_num_connections() == 0:
+            if time.time() > deadline:
+                raise AssertionError('nobody publishes %s' % self.sub.name)
+            time.sleep(0.05)
+
+    def until(self, t, timeout=120.0):
+        """Waits (wall time) until a message stamped at or after sim time t has arrived."""
+        import time
+        deadline = time.time() + timeout
+        while time.time() < deadline:
+            with self.lock:
+                if self.msgs and self.msgs[-1].header.stamp.to_sec() >= t:
+                    return list(self.msgs)
+            time.sleep(0.01)
+        raise AssertionError('no message at sim time %.3f within %.0f s' % (t, timeout))
+
+
+def command(v, w, topic='/cmd_vel'):
+    """A latched cmd_vel publisher that has reached the simulator."""
+    import time
+    pub = rospy.Publisher(topic, Twist, queue_size=1, latch=True)
+    msg = Twist()
+    msg.linear.x, msg.angular.z = v, w
+    deadline = time.time() + 30
+    while pub.get_num_connections() == 0 and time.time() < deadline:
+        time.sleep(0.05)
+    pub.publish(msg)
+    time.sleep(0.2)  # let the message cross before physics runs
+    return pub
+
+
+def call(name, srv_type=Empty, *args):
+    rospy.wait_for_service(name, timeout=30)
+    return rospy.ServiceProxy(name, srv_type)(*args)
+
+
+def xy(msg):
+    return msg.pose.pose.position.x, msg.pose.pose.position.y
+
+
+def at_time(msgs, t):
+    """The message stamped nearest to sim time t."""
+    return min(msgs, key=lambda m: abs(m.header.stamp.to_sec() - t))
+
+
+def fit_circle(points):
+    P = np.asarray(points)
+    A = np.c_[2 * P, np.ones(len(P))]
+    c = np.linalg.lstsq(A, (P ** 2).sum(1), rcond=None)[0]
+    return c[:2], math.sqrt(c[2] + c[0] ** 2 + c[1] ** 2)

@@ -1,0 +1,104 @@
+#!/usr/bin/env python3
+"""rostest: the seed car driven through /cmd_vel in box_house, measured against hand-worked values."""
+import math
+import time
+import unittest
+
+import rospy
+import rostest
+import tf2_ros
+from car.msg import ModelState
+from car.srv import GetModelState, SetModelState
+from rosgraph_msgs.msg import Log
+
+import simtest
+from simtest import Recorder, at_time, call, command, fit_circle, xy
+
+TRUTH = '/gazebo/ground_truth/mycar'
+
+
+class DriveTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('test_drive')
+        cls.truth = Recorder(TRUTH)
+        cls.truth.wait_connected()
+
+    def start(self, v, w, x=0.0, y=0.0, yaw=0.0):
+        """Pause, reset to t = 0, place the car, command (v, w), clear the records, run."""
+        call('/gazebo/pause_physics')
+        call('/gazebo/reset_simulation')
+        if (x, y, yaw) != (0.0, 0.0, 0.0):
+            state = ModelState(model_name='mycar')
+            state.pose.position.x, state.pose.position.y = x, y
+            state.pose.orientation.z, state.pose.orientation.w = math.sin(yaw / 2), math.cos(yaw / 2)
+            self.assertTrue(call('/gazebo/set_model_state', SetModelState, state).success)
+        self.pub = command(v, w)
+        with self.truth.lock:
+            self.truth.msgs.clear()
+        call('/gazebo/unpause_physics')
+
+    def test_seed_command_drives_a_circle_of_radius_v_over_w(self):
+        self.start(1.0, 1.0)
+        t0, lap = 1.0, 2 * math.pi  # wheels at speed after 1.1 / 1.8 = 0.61 s
+        msgs = self.truth.until(t0 + lap + 0.1)
+        points = [xy(m) for m in msgs if t0 <= m.header.stamp.to_sec() <= t0 + lap]
+        _, radius = fit_circle(points)
+        self.assertAlmostEqual(radius, 1.0, delta=0.05)  # r = v / w
+        self.assertLess(math.dist(xy(at_time(msgs, t0)), xy(at_time(msgs, t0 + lap))), 0.10)
+
+    def test_straight_ramp_covers_the_expected_distance(self):
+        self.start(0.5, 0.0)
+        msgs = self.truth.until(4.05)
+        d = math.dist(xy(at_time(msgs, 0.0)), xy(at_time(msgs, 4.0)))
+        # 0.5 m/s for 4 s, minus the ramp at wheelAcceleration 1.8 m/s^2
+        self.assertAlmostEqual(d, 0.5 * 4 - 0.5 ** 2 / (2 * 1.8), delta=0.03)
+
+    def test_zero_command_drifts_less_than_a_millimetre(self):
+        self.start(0.0, 0.0)
+        msgs = self.truth.until(11.0)
+        a, b = at_time(msgs, 1.0).pose.pose.position, at_time(msgs, 11.0).pose.pose.position
+        self.assertLess(math.dist((a.x, a.y, a.z), (b.x, b.y, b.z)), 1e-3)
+
+    def test_base_link_rests_at_its_wheel_height(self):
+        self.start(0.0, 0.0)
+        self.truth.until(2.0)
+        buf = tf2_ros.Buffer()
+        tf2_ros.TransformListener(buf)
+        # base_footprint on the ground + base_link2base_footprint z = base_length / 2 + lidi = 0.055
+        tf = buf.lookup_transform('odom', 'base_link', rospy.Time(0), rospy.Duration(30))
+        self.assertAlmostEqual(tf.transform.translation.z, 0.055, delta=0.002)
+
+    def test_wall_stops_the_car(self):
+        # Wall_2's inner face at x = 4.44857 - 0.075; the car's front is 0.1 m ahead of its origin
+        self.start(1.0, 0.0, x=2.0)
+        msgs = self.truth.until(6.0)
+        self.assertLess(max(m.pose.pose.position.x for m in msgs), 4.44857 - 0.075 - 0.1 + 0.002)
+        self.assertGreater(msgs[-1].pose.pose.position.x, 4.44857 - 0.075 - 0.1 - 0.01)
+
+    def test_driving_into_unit_box_pushes_it(self):
+        get = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
+        self.start(0.5, 0.0, x=-3.5, y=-2.00353, yaw=math.pi)
+        x0 = get('unit_box_0', '').pose.position.x
+        self.truth.until(5.0)
+        call('/gazebo/pause_physics')
+        self.assertLess(get('unit_box_0', '').pose.position.x, x0 - 0.5)
+
+    def test_nan_command_is_rejected_with_a_warning(self):
+        warnings = []
+        sub = rospy.Subscriber('/rosout', Log, lambda m: warnings.append(m.msg) if m.level == Log.WARN else None)
+        deadline = time.time() + 10
+        while sub.get_num_connections() == 0 and time.time() < deadline:
+            time.sleep(0.05)
+        self.start(float('nan'), 1.0)
+        msgs = self.truth.until(2.0)
+        self.assertLess(math.dist(xy(msgs[0]), xy(msgs[-1])), 1e-3)  # it never reached the physics
+        deadline = time.time() + 10
+        while not any('non-finite' in w for w in warnings) and time.time() < deadline:
+            time.sleep(0.05)
+        sub.unregister()
+        self.assertTrue(any('rejected a cmd_vel with a non-finite value' in w for w in warnings), warnings)
+
+
+if __name__ == '__main__':
+    rostest.rosrun('car', 'test_drive', DriveTest)
