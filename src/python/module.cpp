@@ -282,6 +282,69 @@ PYBIND11_MODULE(_core, m) {
       py::arg("kind"), "Keys, defaults and units of a plug-in kind.");
   m.def("plugin_kind", &plugin_kind, py::arg("filename"));
 
+  m.def(
+      "load_world_file",
+      [](const std::string& path) {
+        const WorldDescription d = load_world_file(path);
+        py::dict out;
+        out["name"] = d.name;
+        out["source"] = d.source;
+        out["step_size"] = d.step_size;
+        out["gravity"] = vec(d.gravity);
+        out["sun_direction"] = vec(d.sun_direction);
+        py::list models;
+        for (const auto& m : d.models) {
+          py::dict md;
+          md["name"] = m.name;
+          md["static"] = m.is_static;
+          md["pose"] = pose(m.pose);
+          py::list links;
+          for (const auto& l : m.links) {
+            py::dict ld;
+            ld["name"] = l.name;
+            ld["pose"] = pose(l.pose);            // in the model frame
+            ld["world_pose"] = pose(m.pose * l.pose);
+            if (l.inertial) {
+              py::dict in;
+              in["mass"] = l.inertial->mass;
+              in["origin"] = pose(l.inertial->origin);
+              in["inertia"] = mat(l.inertial->inertia);
+              ld["inertial"] = in;
+            } else {
+              ld["inertial"] = py::none();
+            }
+            py::list cols, vis;
+            for (const auto& c : l.collisions) {
+              py::dict cd = shape(c.shape);
+              cd["name"] = c.name;
+              cd["mu"] = c.friction.mu;
+              cd["mu2"] = c.friction.mu2;
+              cols.append(cd);
+            }
+            for (const auto& v : l.visuals) {
+              py::dict vd = shape(v.shape);
+              vd["name"] = v.name;
+              vd["script"] = v.script_name;
+              vd["diffuse"] = v.material.has_rgba ? py::object(py::cast(std::vector<double>(
+                                                        v.material.rgba.data(), v.material.rgba.data() + 4)))
+                                                  : py::object(py::none());
+              vd["ambient"] = v.has_ambient ? py::object(py::cast(std::vector<double>(v.ambient.data(),
+                                                                                     v.ambient.data() + 4)))
+                                            : py::object(py::none());
+              vis.append(vd);
+            }
+            ld["collisions"] = cols;
+            ld["visuals"] = vis;
+            links.append(ld);
+          }
+          md["links"] = links;
+          models.append(md);
+        }
+        out["models"] = models;
+        return out;
+      },
+      py::arg("path"), "An SDF world as the simulator reads it (sdformat, <state> applied), as a dict.");
+
   py::class_<World>(m, "World", "A simulated world, stepped in fixed ticks. No ROS master needed.")
       .def(py::init([](const std::optional<std::string>& world_file, int solver_iterations) {
              WorldOptions o;
