@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Sets up (idempotent), then expands and checks the bundled car. Extra arguments go to check_model.
+# Sets up (idempotent), then runs the simulator: the seed car in box_house (roslaunch car sim.launch).
+# Arguments go to roslaunch, e.g. rviz:=true rtf:=0 paused:=true.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bash "$ROOT/tools/setup.sh"
@@ -7,4 +8,4 @@ set +u
 # shellcheck disable=SC1091
 source "$ROOT/.ws/devel/setup.bash"
 set -u
-exec "$ROOT/.ws/devel/lib/car/check_model" "$ROOT/urdf/car_camera_lidar04.xacro" "$@"
+exec roslaunch car sim.launch "$@"
