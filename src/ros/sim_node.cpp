@@ -260,9 +260,23 @@ class SimNode {
                cfg.left_joint.c_str(), cfg.right_joint.c_str(), cfg.wheel_separation, cfg.wheel_diameter,
                cfg.wheel_torque, cfg.wheel_acceleration, cfg.publish_odom_tf ? ", odom TF" : "",
                cfg.publish_wheel_tf ? ", wheel TF" : "", cfg.publish_wheel_joint_state ? ", wheel joint states" : "");
+      set_debug_level(cfg);
       io.drives.push_back(std::move(d));
     }
     io_[name] = std::move(io);
+  }
+
+  // rosDebugLevel (Debug, Info, Warn, Error, Fatal; "na" leaves it) sets this node's logger level, as upstream.
+  void set_debug_level(const car_sim::DiffDriveConfig& cfg) {
+    static const std::map<std::string, ros::console::levels::Level> levels = {
+        {"debug", ros::console::levels::Debug}, {"info", ros::console::levels::Info},
+        {"warn", ros::console::levels::Warn},   {"error", ros::console::levels::Error},
+        {"fatal", ros::console::levels::Fatal}};
+    std::string l = cfg.ros_debug_level;
+    for (auto& c : l) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const auto it = levels.find(l);
+    if (it == levels.end()) return;
+    if (ros::console::set_logger_level(ROSCONSOLE_DEFAULT_NAME, it->second)) ros::console::notifyLoggerLevelsChanged();
   }
 
   void on_cmd_vel(const std::string& robot, const geometry_msgs::Twist& m) {
