@@ -10,7 +10,7 @@ from car.msg import ModelState, ModelStates
 from car.srv import DeleteModel, GetModelState, GetWorldProperties, SetModelState, SpawnModel
 from geometry_msgs.msg import Pose
 
-from simtest import Recorder, call, command, xy
+from simtest import Recorder, at_time, call, command
 
 
 def pose(x, y, yaw=0.0):
@@ -131,13 +131,13 @@ class ServicesTest(unittest.TestCase):
         odom_b.wait_connected()
         command(0.5, 0.0, '/a/cmd_vel')
         command(0.0, 1.0, '/b/cmd_vel')
-        self.run_for(1.0)
-        a, b = self.get('car_a', ''), self.get('car_b', '')
-        self.assertGreater(a.pose.position.x, 0.2)                       # a went forward
-        self.assertAlmostEqual(b.pose.position.x, 0.0, delta=0.01)       # b turned on the spot
-        self.assertGreater(abs(b.pose.orientation.z), 0.1)
-        self.assertTrue(odom_a.msgs and odom_b.msgs)
-
+        call('/gazebo/unpause_physics')
+        a, b = at_time(odom_a.until(2.0), 2.0), at_time(odom_b.until(2.0), 2.0)
+        call('/gazebo/pause_physics')
+        self.assertAlmostEqual(a.twist.twist.linear.x, 0.5, delta=0.01)   # a goes straight
+        self.assertAlmostEqual(a.twist.twist.angular.z, 0.0, delta=0.01)
+        self.assertAlmostEqual(b.twist.twist.linear.x, 0.0, delta=0.01)   # b turns on the spot
+        self.assertAlmostEqual(b.twist.twist.angular.z, 1.0, delta=0.02)
 
 if __name__ == '__main__':
     rostest.rosrun('car', 'test_services', ServicesTest)
