@@ -12,7 +12,9 @@ DEB_PACKAGES=(
   liburdfdom-dev liburdfdom-headers-dev libtinyxml2-dev libeigen3-dev pybind11-dev
   libbullet-dev libsdformat-dev libembree-dev
   libtf2-ros-dev python3-tf2-ros libsensor-msgs-dev python3-sensor-msgs libnav-msgs-dev python3-nav-msgs
-  libgeometry-msgs-dev python3-geometry-msgs ros-robot-state-publisher joint-state-publisher
+  libgeometry-msgs-dev python3-geometry-msgs libstd-srvs-dev python3-std-srvs libros-rosgraph-msgs-dev python3-rosgraph-msgs
+  ros-message-generation ros-message-runtime python3-tf2-msgs libtf2-msgs-dev
+  ros-robot-state-publisher joint-state-publisher rviz rosbash
   googletest python3-pytest
 )
 

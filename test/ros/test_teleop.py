@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""rostest: teleop_twist_keyboard in a pseudo-terminal: keys in, the expected Twist out, terminal restored."""
+import os
+import subprocess
+import termios
+import time
+import unittest
+
+import rospy
+import rostest
+from geometry_msgs.msg import Twist
+from roslib.packages import find_node
+
+
+class TeleopTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('test_teleop')
+        cls.msgs = []
+        rospy.Subscriber('/cmd_vel', Twist, cls.msgs.append, queue_size=None)
+
+    def start(self):
+        self.master, self.slave = os.openpty()
+        self.saved = termios.tcgetattr(self.slave)
+        self.proc = subprocess.Popen([find_node('car', 'teleop_twist_keyboard.py')[0], '_key_timeout:=0'],
+                                     stdin=self.slave, stdout=self.slave, stderr=subprocess.PIPE)
+        # wait until it has put the terminal in raw mode and connected to us
+        deadline = time.time() + 30
+        while time.time() < deadline and (termios.tcgetattr(self.slave) == self.saved or
+                                          not self.msgs_pub_connected()):
+            time.sleep(0.05)
+
+    def msgs_pub_connected(self):
+        return any(n for n in rospy.get_published_topics() if n[0] == '/cmd_vel')
+
+    def send(self, keys, expect):
+        n = len(self.msgs)
+        os.write(self.master, keys.encode())
+        deadline = time.time() + 10
+        while len(self.msgs) < n + expect and time.time() < deadline:
+            time.sleep(0.02)
+        return self.msgs[n:]
+
+    def stop(self):
+        os.write(self.master, b'\x03')
+        self.proc.wait(timeout=20)
+
+    def tearDown(self):
+        if self.proc.poll() is None:
+            self.proc.kill()
+        os.close(self.master)
+        os.close(self.slave)
+
+    def test_keys_publish_twists_and_the_terminal_is_restored(self):
+        self.start()
+        time.sleep(1.0)  # let the subscription connect
+        (fwd,) = self.send('i', 1)
+        self.assertEqual((fwd.linear.x, fwd.angular.z), (0.5, 0.0))
+        (left,) = self.send('j', 1)
+        self.assertEqual((left.linear.x, left.angular.z), (0.0, 1.0))
+        faster = self.send('qi', 2)[-1]
+        self.assertAlmostEqual(faster.linear.x, 0.55)
+        (stop,) = self.send('k', 1)
+        self.assertEqual((stop.linear.x, stop.angular.z), (0.0, 0.0))
+        self.stop()
+        self.assertEqual(self.proc.returncode, 0)
+        self.assertEqual(termios.tcgetattr(self.slave), self.saved)
+
+    def test_sigterm_restores_the_terminal(self):
+        self.start()
+        self.assertNotEqual(termios.tcgetattr(self.slave), self.saved)  # raw while running
+        self.proc.terminate()
+        self.proc.wait(timeout=20)
+        self.assertEqual(termios.tcgetattr(self.slave), self.saved)
+
+
+if __name__ == '__main__':
+    rostest.rosrun('car', 'test_teleop', TeleopTest)
