@@ -136,6 +136,10 @@ struct RobotModel {
   Eigen::Isometry3d link_pose_in_root(const std::string& link) const;
 };
 
+// Why mass properties cannot be simulated ("" when they can): mass <= 0, an inertia tensor that is not
+// positive definite, or principal moments that break the triangle inequality. code names the kind.
+std::string inertial_problem(double mass, const Eigen::Matrix3d& inertia, std::string* code = nullptr);
+
 struct LoadOptions {
   // Throw on the first Error-severity finding (a simulator must); false keeps every finding in
   // RobotModel::diagnostics (the model check wants them all). Unreadable XML always throws.

@@ -66,6 +66,12 @@ struct WorldDescription {
 // Loads an SDF world (SDF 1.4-1.9 through sdformat). Throws LoadError naming file, element and reason.
 WorldDescription load_world_file(const std::string& path);
 WorldDescription load_world_string(const std::string& xml, const std::string& source_name = "<string>");
+// The include rule (the same as python/car/world_tools.py): model://NAME through GAZEBO_MODEL_PATH, then car's
+// models/ folder; package://PKG through ROS_PACKAGE_PATH; file:// and plain paths as they are. "" when not found.
+std::vector<std::string> model_path();
+std::string resolve_uri(const std::string& uri);
+std::string resolve_uri(const std::string& uri, const std::string& base_dir);  // relative paths against base_dir
+
 // Gazebo's empty world: a ground plane (mu 100, mu2 50) and a sun, 1 ms step.
 WorldDescription empty_world();
 

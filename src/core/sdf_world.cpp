@@ -2,8 +2,10 @@
 // materials, gravity, step size, the sun, and the <state> block's poses.
 #include <sdf/sdf.hh>
 
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <sys/stat.h>
 
 #include "car_sim/world.hpp"
 
@@ -59,6 +61,41 @@ std::optional<Shape> to_shape(const sdf::Geometry& g, const std::string& where, 
                                    "geometry type not simulated by car; ignored", 0});
       return std::nullopt;
   }
+}
+
+bool exists(const std::string& p) {
+  struct stat st;
+  return ::stat(p.c_str(), &st) == 0;
+}
+
+std::vector<std::string> split_path(const char* env) {
+  std::vector<std::string> out;
+  if (!env) return out;
+  std::stringstream ss(env);
+  std::string item;
+  while (std::getline(ss, item, ':'))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+std::string package_named(const std::string& name) {
+  for (const auto& entry : split_path(std::getenv("ROS_PACKAGE_PATH"))) {
+    for (const std::string& cand : {entry, entry + "/" + name}) {
+      std::ifstream in(cand + "/package.xml");
+      if (!in) continue;
+      std::stringstream ss;
+      ss << in.rdbuf();
+      const std::string xml = ss.str();
+      const auto a = xml.find("<name>"), b = xml.find("</name>");
+      if (a != std::string::npos && b != std::string::npos) {
+        std::string n = xml.substr(a + 6, b - a - 6);
+        n.erase(0, n.find_first_not_of(" \t\r\n"));
+        n.erase(n.find_last_not_of(" \t\r\n") + 1);
+        if (n == name) return cand;
+      }
+    }
+  }
+  return "";
 }
 
 SurfaceFriction read_friction(const sdf::Collision& c) {
@@ -144,6 +181,27 @@ void apply_state(const sdf::World& w, WorldDescription* desc) {
   }
 }
 
+// A model and, after it, its nested models as models of their own: "parent::child", pose composed, static when
+// the parent is (the world tools flatten nested models the same way).
+void add_model(const sdf::Model& m, const std::string& prefix, const Eigen::Isometry3d& parent_pose, bool parent_static,
+               WorldDescription* d) {
+  WorldModelDesc md;
+  md.name = prefix.empty() ? m.Name() : prefix + "::" + m.Name();
+  md.is_static = m.Static() || parent_static;
+  ignition::math::Pose3d mp;
+  m.SemanticPose().Resolve(mp);
+  md.pose = parent_pose * to_iso(mp);
+  for (uint64_t k = 0; k < m.LinkCount(); ++k) md.links.push_back(read_link(*m.LinkByIndex(k), md.name, d));
+  if (m.JointCount() > 0 && m.ModelCount() > 0)
+    d->diagnostics.push_back({Severity::Warning, "nested-model-joints", "model[" + md.name + "]",
+                              "joints of a model with nested models are not simulated", 0});
+  const Eigen::Isometry3d pose = md.pose;
+  const bool is_static = md.is_static;
+  const std::string name = md.name;
+  d->models.push_back(std::move(md));
+  for (uint64_t i = 0; i < m.ModelCount(); ++i) add_model(*m.ModelByIndex(i), name, pose, is_static, d);
+}
+
 WorldDescription convert(const sdf::Root& root, const std::string& source) {
   const sdf::World* w = root.WorldCount() > 0 ? root.WorldByIndex(0) : nullptr;
   if (!w) throw LoadError(source, 0, "sdf", "no <world> in the file");
@@ -167,20 +225,7 @@ WorldDescription convert(const sdf::Root& root, const std::string& source) {
     if (dir.Length() > 0) d.sun_direction = Eigen::Vector3d(dir.X(), dir.Y(), dir.Z()).normalized();
     break;
   }
-  for (uint64_t i = 0; i < w->ModelCount(); ++i) {
-    const sdf::Model* m = w->ModelByIndex(i);
-    WorldModelDesc md;
-    md.name = m->Name();
-    md.is_static = m->Static();
-    ignition::math::Pose3d mp;
-    m->SemanticPose().Resolve(mp);
-    md.pose = to_iso(mp);
-    if (m->ModelCount() > 0)
-      d.diagnostics.push_back({Severity::Warning, "nested-model", "model[" + md.name + "]",
-                               "nested models are not simulated yet; flatten the world first", 0});
-    for (uint64_t k = 0; k < m->LinkCount(); ++k) md.links.push_back(read_link(*m->LinkByIndex(k), md.name, &d));
-    d.models.push_back(std::move(md));
-  }
+  for (uint64_t i = 0; i < w->ModelCount(); ++i) add_model(*w->ModelByIndex(i), "", Eigen::Isometry3d::Identity(), false, &d);
   apply_state(*w, &d);
   for (const auto& m : d.models) {
     if (m.is_static) continue;
@@ -195,24 +240,65 @@ WorldDescription convert(const sdf::Root& root, const std::string& source) {
 
 }  // namespace
 
+std::vector<std::string> model_path() {
+  std::vector<std::string> dirs = split_path(std::getenv("GAZEBO_MODEL_PATH"));
+  dirs.push_back(CAR_MODELS_DIR);
+  return dirs;
+}
+
+std::string resolve_uri(const std::string& uri) { return resolve_uri(uri, ""); }
+
+std::string resolve_uri(const std::string& uri, const std::string& base_dir) {
+  if (uri.rfind("model://", 0) == 0) {
+    const std::string rest = uri.substr(8);
+    const std::string name = rest.substr(0, rest.find('/'));
+    const std::string tail = rest.size() > name.size() ? rest.substr(name.size()) : "";
+    for (const auto& d : model_path())
+      if (exists(d + "/" + name)) return d + "/" + name + tail;
+    return "";
+  }
+  if (uri.rfind("package://", 0) == 0) {
+    const std::string rest = uri.substr(10);
+    const std::string pkg = rest.substr(0, rest.find('/'));
+    const std::string root = package_named(pkg);
+    return root.empty() ? "" : root + rest.substr(pkg.size());
+  }
+  std::string path = uri.rfind("file://", 0) == 0 ? uri.substr(7) : uri;
+  if (!path.empty() && path[0] != '/' && !base_dir.empty()) path = base_dir + "/" + path;
+  return exists(path) ? path : "";
+}
+
 const WorldModelDesc* WorldDescription::find_model(const std::string& n) const {
   for (const auto& m : models)
     if (m.name == n) return &m;
   return nullptr;
 }
 
+// The include rule of car's world tools (python/car/world_tools.py), for sdformat. Relative paths resolve against
+// the world file's folder. sdformat reads includes inside included models with its global configuration, so the
+// rule is set there too.
+sdf::ParserConfig parser_config(const std::string& world_file) {
+  const std::string base = world_file.find('/') == std::string::npos ? "." : world_file.substr(0, world_file.rfind('/'));
+  auto find = [base](const std::string& uri) { return resolve_uri(uri, base); };
+  sdf::ParserConfig::GlobalConfig().SetFindCallback(find);
+  sdf::setFindCallback(find);
+  sdf::ParserConfig config;
+  config.SetFindCallback(find);
+  return config;
+}
+
 WorldDescription load_world_file(const std::string& path) {
   std::ifstream probe(path);
   if (!probe) throw LoadError(path, 0, "", "cannot open file");
   sdf::Root root;
-  const sdf::Errors errors = root.Load(path);
+  const sdf::Errors errors = root.Load(path, parser_config(path));
   if (!errors.empty()) fail_with(path, errors);
   return convert(root, path);
 }
 
 WorldDescription load_world_string(const std::string& xml, const std::string& source_name) {
   sdf::Root root;
-  const sdf::Errors errors = root.LoadSdfString(xml);
+  const sdf::Errors errors = root.LoadSdfString(xml, parser_config(""));
   if (!errors.empty()) fail_with(source_name, errors);
   return convert(root, source_name);
 }

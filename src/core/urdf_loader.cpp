@@ -109,6 +109,35 @@ Eigen::Isometry3d RobotModel::link_pose_in_root(const std::string& link) const {
 }
 
 namespace {
+std::string fmt(double v) {
+  std::ostringstream os;
+  os.precision(6);
+  os << v;
+  return os.str();
+}
+
+std::string fmt3(const Eigen::Vector3d& v) { return fmt(v.x()) + " " + fmt(v.y()) + " " + fmt(v.z()); }
+
+}  // namespace
+
+std::string inertial_problem(double mass, const Eigen::Matrix3d& inertia, std::string* code) {
+  auto fail = [&](const char* c, const std::string& why) {
+    if (code) *code = c;
+    return why;
+  };
+  if (!(mass > 0.0)) return fail("mass-nonpositive", "mass " + fmt(mass) + " kg is not > 0");
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(inertia);
+  const Eigen::Vector3d p = es.eigenvalues();  // ascending
+  const double scale = std::max(p.cwiseAbs().maxCoeff(), 1e-300);
+  if (p(0) <= 1e-12 * scale)
+    return fail("inertia-not-positive-definite", "principal moments (" + fmt3(p) + ") kg m^2 are not all > 0");
+  if (p(0) + p(1) < p(2) * (1.0 - 1e-9))
+    return fail("inertia-triangle",
+                "principal moments (" + fmt3(p) + ") kg m^2 break the triangle inequality I1 + I2 >= I3");
+  return "";
+}
+
+namespace {
 
 // Collects what urdfdom reports through console_bridge, so a failed parse can say why.
 class CaptureHandler : public console_bridge::OutputHandler {
@@ -170,15 +199,6 @@ JointType to_joint_type(int t) {
     default: return JointType::Fixed;
   }
 }
-
-std::string fmt(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
-
-std::string fmt3(const Eigen::Vector3d& v) { return fmt(v.x()) + " " + fmt(v.y()) + " " + fmt(v.z()); }
 
 // Everything the raw pass and the checks need to report findings with line numbers.
 class Loader {
@@ -358,20 +378,10 @@ class Loader {
         continue;
       }
       const auto& in = *l.inertial;
-      if (!(in.mass > 0.0)) {
-        add(Severity::Error, "mass-nonpositive", where + "/mass", "mass " + fmt(in.mass) + " kg is not > 0", line);
-        continue;
-      }
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(in.inertia);
-      const Eigen::Vector3d p = es.eigenvalues();  // ascending
-      const double scale = std::max(p.cwiseAbs().maxCoeff(), 1e-300);
-      if (p(0) <= 1e-12 * scale) {
-        add(Severity::Error, "inertia-not-positive-definite", where + "/inertia",
-            "principal moments (" + fmt3(p) + ") kg m^2 are not all > 0", line);
-      } else if (p(0) + p(1) < p(2) * (1.0 - 1e-9)) {
-        add(Severity::Error, "inertia-triangle", where + "/inertia",
-            "principal moments (" + fmt3(p) + ") kg m^2 break the triangle inequality I1 + I2 >= I3", line);
-      }
+      std::string code;
+      const std::string why = inertial_problem(in.mass, in.inertia, &code);
+      if (!why.empty())
+        add(Severity::Error, code, code == "mass-nonpositive" ? where + "/mass" : where + "/inertia", why, line);
     }
   }
 

@@ -50,7 +50,10 @@ py::dict shape(const Shape& s) {
     case ShapeType::Cylinder: d["radius"] = s.radius; d["length"] = s.length; break;
     case ShapeType::Sphere: d["radius"] = s.radius; break;
     case ShapeType::Mesh: d["uri"] = s.mesh_uri; d["scale"] = vec(s.mesh_scale); break;
-    case ShapeType::Plane: d["normal"] = vec(s.normal); break;
+    case ShapeType::Plane:
+      d["normal"] = vec(s.normal);
+      d["size"] = py::cast(std::vector<double>{s.size.x(), s.size.y()});
+      break;
   }
   return d;
 }
@@ -223,6 +226,65 @@ Eigen::Isometry3d pose_of(double x, double y, double z, double roll, double pitc
   return T;
 }
 
+py::dict world_dict(const WorldDescription& d) {
+  py::dict out;
+  out["name"] = d.name;
+  out["source"] = d.source;
+  out["step_size"] = d.step_size;
+  out["gravity"] = vec(d.gravity);
+  out["sun_direction"] = vec(d.sun_direction);
+  py::list models;
+  for (const auto& m : d.models) {
+    py::dict md;
+    md["name"] = m.name;
+    md["static"] = m.is_static;
+    md["pose"] = pose(m.pose);
+    py::list links;
+    for (const auto& l : m.links) {
+      py::dict ld;
+      ld["name"] = l.name;
+      ld["pose"] = pose(l.pose);            // in the model frame
+      ld["world_pose"] = pose(m.pose * l.pose);
+      if (l.inertial) {
+        py::dict in;
+        in["mass"] = l.inertial->mass;
+        in["origin"] = pose(l.inertial->origin);
+        in["inertia"] = mat(l.inertial->inertia);
+        ld["inertial"] = in;
+      } else {
+        ld["inertial"] = py::none();
+      }
+      py::list cols, vis;
+      for (const auto& c : l.collisions) {
+        py::dict cd = shape(c.shape);
+        cd["name"] = c.name;
+        cd["mu"] = c.friction.mu;
+        cd["mu2"] = c.friction.mu2;
+        cols.append(cd);
+      }
+      for (const auto& v : l.visuals) {
+        py::dict vd = shape(v.shape);
+        vd["name"] = v.name;
+        vd["script"] = v.script_name;
+        vd["diffuse"] = v.material.has_rgba ? py::object(py::cast(std::vector<double>(
+                                                  v.material.rgba.data(), v.material.rgba.data() + 4)))
+                                            : py::object(py::none());
+        vd["ambient"] = v.has_ambient ? py::object(py::cast(std::vector<double>(v.ambient.data(),
+                                                                               v.ambient.data() + 4)))
+                                      : py::object(py::none());
+        vis.append(vd);
+      }
+      ld["collisions"] = cols;
+      ld["visuals"] = vis;
+      links.append(ld);
+    }
+    md["links"] = links;
+    models.append(md);
+  }
+  out["models"] = models;
+  return out;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -281,69 +343,31 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("kind"), "Keys, defaults and units of a plug-in kind.");
   m.def("plugin_kind", &plugin_kind, py::arg("filename"));
-
   m.def(
-      "load_world_file",
-      [](const std::string& path) {
-        const WorldDescription d = load_world_file(path);
-        py::dict out;
-        out["name"] = d.name;
-        out["source"] = d.source;
-        out["step_size"] = d.step_size;
-        out["gravity"] = vec(d.gravity);
-        out["sun_direction"] = vec(d.sun_direction);
-        py::list models;
-        for (const auto& m : d.models) {
-          py::dict md;
-          md["name"] = m.name;
-          md["static"] = m.is_static;
-          md["pose"] = pose(m.pose);
-          py::list links;
-          for (const auto& l : m.links) {
-            py::dict ld;
-            ld["name"] = l.name;
-            ld["pose"] = pose(l.pose);            // in the model frame
-            ld["world_pose"] = pose(m.pose * l.pose);
-            if (l.inertial) {
-              py::dict in;
-              in["mass"] = l.inertial->mass;
-              in["origin"] = pose(l.inertial->origin);
-              in["inertia"] = mat(l.inertial->inertia);
-              ld["inertial"] = in;
-            } else {
-              ld["inertial"] = py::none();
-            }
-            py::list cols, vis;
-            for (const auto& c : l.collisions) {
-              py::dict cd = shape(c.shape);
-              cd["name"] = c.name;
-              cd["mu"] = c.friction.mu;
-              cd["mu2"] = c.friction.mu2;
-              cols.append(cd);
-            }
-            for (const auto& v : l.visuals) {
-              py::dict vd = shape(v.shape);
-              vd["name"] = v.name;
-              vd["script"] = v.script_name;
-              vd["diffuse"] = v.material.has_rgba ? py::object(py::cast(std::vector<double>(
-                                                        v.material.rgba.data(), v.material.rgba.data() + 4)))
-                                                  : py::object(py::none());
-              vd["ambient"] = v.has_ambient ? py::object(py::cast(std::vector<double>(v.ambient.data(),
-                                                                                     v.ambient.data() + 4)))
-                                            : py::object(py::none());
-              vis.append(vd);
-            }
-            ld["collisions"] = cols;
-            ld["visuals"] = vis;
-            links.append(ld);
-          }
-          md["links"] = links;
-          models.append(md);
+      "inertial_problem",
+      [](double mass, const std::vector<std::vector<double>>& inertia) {
+        if (inertia.size() != 3) throw std::invalid_argument("inertia must be 3 x 3");
+        Eigen::Matrix3d I;
+        for (int r = 0; r < 3; ++r) {
+          if (inertia[r].size() != 3) throw std::invalid_argument("inertia must be 3 x 3");
+          for (int c = 0; c < 3; ++c) I(r, c) = inertia[r][c];
         }
-        out["models"] = models;
-        return out;
+        std::string code;
+        const std::string why = inertial_problem(mass, I, &code);
+        return py::make_tuple(code, why);
       },
-      py::arg("path"), "An SDF world as the simulator reads it (sdformat, <state> applied), as a dict.");
+      py::arg("mass"), py::arg("inertia"),
+      "(code, reason) when the mass properties cannot be simulated, ('', '') when they can.");
+  m.def("model_path", &car_sim::model_path, "Where model:// looks, in order.");
+  m.def("resolve_uri", py::overload_cast<const std::string&, const std::string&>(&car_sim::resolve_uri),
+        py::arg("uri"), py::arg("base_dir") = "", "The include rule: a path for a URI, '' when not found.");
+
+  m.def("load_world_file", [](const std::string& path) { return world_dict(load_world_file(path)); }, py::arg("path"),
+        "An SDF world as the simulator reads it (sdformat, includes resolved, <state> applied), as a dict.");
+  m.def(
+      "load_world_string",
+      [](const std::string& xml, const std::string& source) { return world_dict(load_world_string(xml, source)); },
+      py::arg("xml"), py::arg("source") = "<string>", "load_world_file for SDF text.");
 
   py::class_<World>(m, "World", "A simulated world, stepped in fixed ticks. No ROS master needed.")
       .def(py::init([](const std::optional<std::string>& world_file, int solver_iterations) {

@@ -1,0 +1,103 @@
+"""world_tool: flatten, check and map SDF worlds.
+
+  world_tool flatten WORLD [-o OUT]
+  world_tool check WORLD [--json] [--strict]
+  world_tool map WORLD [-o BASENAME] [--resolution 0.05] [--z-min 0.05] [--z-max 0.5] [--publish] [--frame odom]
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+from car import world_tools
+
+
+def cmd_flatten(a) -> int:
+    try:
+        text = world_tools.flatten_to_string(a.world)
+    except world_tools.WorldError as e:
+        print('world_tool: error: %s' % e, file=sys.stderr)
+        return 2
+    if a.output:
+        with open(a.output, 'w', encoding='utf-8') as f:
+            f.write(text)
+    else:
+        sys.stdout.write(text)
+    return 0
+
+
+def cmd_check(a) -> int:
+    report = world_tools.check(a.world)
+    c = report['counts']
+    code = 2 if c['error'] else (1 if a.strict and c['warning'] else 0)
+    if a.json:
+        report['exit_code'] = code
+        print(json.dumps(report, indent=2))
+        return code
+    print('car world check: %s' % a.world)
+    for f in report['findings'] or [{'severity': 'ok', 'element': '', 'message': 'no findings'}]:
+        print('  %-7s %s%s' % (f['severity'], (f['element'] + ': ') if f['element'] else '', f['message']))
+        if 'expected' in f:
+            print('          declared %s' % f['declared'])
+            print('          expected %s' % f['expected'])
+    print('summary: %d error(s), %d warning(s), %d note(s)' % (c['error'], c['warning'], c['info']))
+    return code
+
+
+def cmd_map(a) -> int:
+    from car import _core, world_map
+    try:
+        desc = _core.load_world_string(world_tools.flatten_to_string(a.world), a.world)
+        grid, origin, skipped = world_map.occupancy(desc, a.resolution, a.z_min, a.z_max)
+    except (world_tools.WorldError, ValueError) as e:
+        print('world_tool: error: %s' % e, file=sys.stderr)
+        return 2
+    for s in skipped:
+        print('world_tool: warning: %s is not sliced into the map' % s, file=sys.stderr)
+    base = a.output or a.world.rsplit('/', 1)[-1].rsplit('.', 1)[0]
+    pgm, yml = world_map.write_map(grid, origin, a.resolution, base)
+    occupied = int((grid == world_map.OCCUPIED).sum())
+    print('world_tool: %s + %s: %d x %d cells of %g m, origin (%g, %g), %d occupied, slab z %g..%g m'
+          % (pgm, yml, grid.shape[1], grid.shape[0], a.resolution, origin[0], origin[1], occupied, a.z_min, a.z_max))
+    if a.publish:
+        import rospy
+        from nav_msgs.msg import OccupancyGrid
+        rospy.init_node('world_map', anonymous=True)
+        pub = rospy.Publisher(a.topic, OccupancyGrid, queue_size=1, latch=True)
+        msg = world_map.to_occupancy_grid(grid, origin, a.resolution, a.frame)
+        msg.header.stamp = rospy.Time.now()
+        pub.publish(msg)
+        rospy.loginfo('world_map: %s latched on %s in frame %s', a.world, a.topic, a.frame)
+        rospy.spin()
+    return 0
+
+
+def main(argv=None) -> int:
+    import rospy
+    argv = rospy.myargv(sys.argv if argv is None else ['world_tool'] + list(argv))[1:]
+    ap = argparse.ArgumentParser(prog='world_tool', description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = ap.add_subparsers(dest='command', required=True)
+    f = sub.add_parser('flatten', help='one self-contained world: includes resolved, <state> applied')
+    f.add_argument('world')
+    f.add_argument('-o', '--output')
+    c = sub.add_parser('check', help='physics-aware checks of every link, unknown geometry, missing uris, poses')
+    c.add_argument('world')
+    c.add_argument('--json', action='store_true')
+    c.add_argument('--strict', action='store_true', help='warnings fail (exit 1)')
+    m = sub.add_parser('map', help="an occupancy grid in map_server's format (PGM + YAML)")
+    m.add_argument('world')
+    m.add_argument('-o', '--output', help='base name of the .pgm and .yaml (default: the world name)')
+    m.add_argument('--resolution', type=float, default=0.05, help='[m] per cell (default 0.05)')
+    m.add_argument('--z-min', type=float, default=0.05, help='[m] bottom of the slice (default 0.05)')
+    m.add_argument('--z-max', type=float, default=0.5, help='[m] top of the slice (default 0.5)')
+    m.add_argument('--publish', action='store_true', help='also publish it latched as nav_msgs/OccupancyGrid')
+    m.add_argument('--topic', default='/map')
+    m.add_argument('--frame', default='odom', help='frame of the published map (default odom, the simulator world)')
+    a = ap.parse_args(argv)
+    return {'flatten': cmd_flatten, 'check': cmd_check, 'map': cmd_map}[a.command](a)
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,138 @@
+"""World tools: include resolution and flattening, the include rule shared with the core, and the checks."""
+import math
+import os
+import xml.etree.ElementTree as ET
+
+import pytest
+
+from car import _core, world_tools
+from conftest import DATA, ROOT
+
+WORLDS = os.path.join(DATA, 'worlds')
+INCLUDES = os.path.join(WORLDS, 'includes.world')
+
+
+@pytest.fixture(autouse=True)
+def test_models(monkeypatch):
+    monkeypatch.setenv('GAZEBO_MODEL_PATH', os.path.join(DATA, 'models'))
+    monkeypatch.setenv('ROS_PACKAGE_PATH', ROOT + ':' + os.environ.get('ROS_PACKAGE_PATH', ''))
+
+
+def models_of(desc):
+    return {m['name']: (m['static'], [round(v, 9) for v in m['pose']['xyz']], round(m['pose']['rpy'][2], 9))
+            for m in desc['models']}
+
+
+def flat(path, tmp_path):
+    out = tmp_path / 'flat.world'
+    out.write_text(world_tools.flatten_to_string(path))
+    return str(out)
+
+
+def test_flattened_world_has_exactly_the_expected_models(tmp_path):
+    world = ET.parse(flat(INCLUDES, tmp_path)).getroot().find('world')
+    assert [m.get('name') for m in world.findall('model')] == [
+        'ground_plane', 'crate_a', 'crate_b', 'crate_c', 'shelf', 'shelf::top_crate']
+    assert [l.get('name') for l in world.findall('light')] == ['sun']
+    assert world.find('include') is None
+
+
+def test_include_overrides_name_pose_and_static(tmp_path):
+    models = models_of(_core.load_world_file(flat(INCLUDES, tmp_path)))
+    assert models['crate_a'] == (False, [1.0, 2.0, 0.0], 0.5)    # <pose> replaces the model's own 9 9 9
+    assert models['crate_b'] == (True, [-1.0, 0.0, 0.0], 0.0)    # file:// relative to the world, <static> true
+    assert models['crate_c'] == (False, [0.0, -2.0, 0.0], 0.0)   # package://
+
+
+def test_nested_include_is_hoisted_with_composed_pose(tmp_path):
+    # shelf at (3, 0, 0) turned 90 deg; its crate at (0.2, 0, 0.51) in the shelf frame -> (3, 0.2, 0.51)
+    static, xyz, yaw = models_of(_core.load_world_file(flat(INCLUDES, tmp_path)))['shelf::top_crate']
+    assert static is True  # the shelf is static
+    assert xyz == pytest.approx([3.0, 0.2, 0.51])
+    assert yaw == pytest.approx(math.pi / 2)
+
+
+def test_model_config_picks_the_highest_sdf_version(tmp_path):
+    world = ET.parse(flat(INCLUDES, tmp_path)).getroot().find('world')
+    crate = [m for m in world.findall('model') if m.get('name') == 'crate_a'][0]
+    assert crate.find('link').get('name') == 'body'  # model.sdf (1.6), not model-1_5.sdf
+
+
+def test_simulator_reads_the_world_as_the_flattener_writes_it(tmp_path):
+    # one rule: the core resolving the includes itself == the core reading the flattened file
+    assert models_of(_core.load_world_file(INCLUDES)) == models_of(_core.load_world_file(flat(INCLUDES, tmp_path)))
+
+
+def test_state_poses_are_applied_and_the_block_dropped(tmp_path):
+    world = ET.parse(flat(os.path.join(ROOT, 'worlds', 'box_house.world'), tmp_path)).getroot().find('world')
+    assert world.find('state') is None
+    box = [m for m in world.findall('model') if m.get('name') == 'unit_box_0'][0]
+    assert box.findtext('pose').split()[:3] == ['-4.96407', '-2.00353', '0.499995']
+
+
+def test_model_path_order_is_the_same_in_both(monkeypatch, tmp_path):
+    (tmp_path / 'ground_plane').mkdir()
+    monkeypatch.setenv('GAZEBO_MODEL_PATH', str(tmp_path))
+    assert world_tools.resolve_uri('model://ground_plane', '.') == str(tmp_path / 'ground_plane')
+    assert _core.resolve_uri('model://ground_plane') == str(tmp_path / 'ground_plane')
+    monkeypatch.setenv('GAZEBO_MODEL_PATH', '')
+    builtin = os.path.realpath(os.path.join(ROOT, 'models', 'ground_plane'))
+    assert os.path.realpath(world_tools.resolve_uri('model://ground_plane', '.')) == builtin
+    assert os.path.realpath(_core.resolve_uri('model://ground_plane')) == builtin
+
+
+# ---- bad input -----------------------------------------------------------------------------------------
+
+def error_of(name):
+    with pytest.raises(world_tools.WorldError) as e:
+        world_tools.flatten(os.path.join(WORLDS, 'bad', name))
+    return e.value
+
+
+def test_include_without_uri():
+    e = error_of('no_uri.world')
+    assert (e.element, e.reason) == ('world[bad]/include[0]', '<include> has no <uri>')
+
+
+def test_include_of_a_missing_model():
+    e = error_of('missing_model.world')
+    assert e.element == 'world[bad]/include[0]/uri'
+    assert e.reason.startswith("cannot find 'model://no_such_model' (model path: ")
+
+
+def check_of(name):
+    return world_tools.check(os.path.join(WORLDS, 'bad', name))['findings']
+
+
+def test_malformed_pose():
+    (f,) = check_of('bad_pose.world')
+    assert (f['severity'], f['element']) == ('error', 'world[bad]/model[post]/pose')
+    assert f['message'] == "pose '1 2 three 0 0 0' is not 6 numbers (x y z roll pitch yaw)"
+
+
+def test_unknown_geometry():
+    (f,) = check_of('unknown_geometry.world')
+    assert (f['severity'], f['element']) == ('error', 'world[bad]/model[blob]/link[l]/collision[c]/geometry/torus')
+    assert f['message'].startswith('unknown geometry <torus>')
+
+
+def test_mesh_without_uri():
+    (f,) = check_of('mesh_no_uri.world')
+    assert (f['element'], f['message']) == ('world[bad]/model[statue]/link[l]/visual[v]/geometry/mesh',
+                                            '<mesh> has no <uri>')
+
+
+def test_massless_dynamic_link():
+    (f,) = check_of('massless.world')
+    assert f['severity'] == 'error'
+    assert 'a dynamic link needs a mass > 0' in f['message']
+
+
+def test_inertia_against_the_shape():
+    (f,) = check_of('wrong_inertia.world')
+    assert (f['severity'], f['element']) == ('warning', 'world[bad]/model[cube]/link[body]/inertial/inertia')
+    assert [round(f['expected'][i][i], 6) for i in range(3)] == [0.166667] * 3
+
+
+def test_box_house_is_clean():
+    assert world_tools.check(os.path.join(ROOT, 'worlds', 'box_house.world'))['findings'] == []
