@@ -10,6 +10,7 @@
 #include "car_sim/diff_drive.hpp"
 #include "car_sim/model.hpp"
 #include "car_sim/plugins.hpp"
+#include "car_sim/sensors.hpp"
 
 namespace car_sim {
 
@@ -56,7 +57,9 @@ struct WorldDescription {
   Eigen::Vector3d gravity = Eigen::Vector3d(0, 0, -9.8);  // [m/s^2], world frame
   double step_size = 0.001;                              // [s] <max_step_size>
   double real_time_factor = 1.0;                         // <real_time_factor>, a pacing hint for the node
-  Eigen::Vector3d sun_direction = Eigen::Vector3d(-0.5, 0.1, -0.9).normalized();
+  Eigen::Vector3d sun_direction = Eigen::Vector3d(-0.5, 0.1, -0.9).normalized();  // light travels along it
+  double ambient = 0.4;                                                          // <scene><ambient> (grey level)
+  Eigen::Vector3d background = Eigen::Vector3d(0.7, 0.7, 0.7);                  // <scene><background>
   std::vector<WorldModelDesc> models;
   std::vector<Diagnostic> diagnostics;
 
@@ -80,6 +83,7 @@ WorldDescription empty_world();
 struct WorldOptions {
   int solver_iterations = 10;        // at most this many sequential-impulse iterations per step
   double residual_threshold = 1e-9;  // [(m/s)^2] converged: stop iterating early
+  uint64_t seed = 0;                 // sensor noise: each sensor's generator is seeded from (seed, robot/sensor)
 };
 
 // Pose and twist of a model's root frame, world frame.
@@ -111,6 +115,14 @@ struct Contact {
   std::string a, b;          // "model/link" (robots: the body's top link)
   Eigen::Vector3d position;  // [m], world frame, on b
   double normal_force = 0.0; // [N]
+};
+
+// A sensor of a spawned robot, for the ROS skin.
+struct SensorInfo {
+  std::string robot;
+  PluginConfig config;   // kind, names, every resolved key
+  std::string link;      // the link it is on
+  double rate = 0.0;     // [Hz], 0 = every step
 };
 
 // What a spawned robot is, for the ROS skin: its model, resolved plug-ins and namespace.
@@ -164,6 +176,12 @@ class World {
   // Commands the robot's diff drive(s): v [m/s] forward, w [rad/s] about z. Non-finite values throw.
   void set_cmd_vel(const std::string& robot, double v, double w);
 
+  // Sensors: every sensor plug-in of every robot. A sensor computes only while active (someone listens).
+  std::vector<SensorInfo> sensors() const;
+  void set_sensor_active(const std::string& robot, const std::string& plugin, bool active);
+  // Measurements made since the last call.
+  SensorOutputs take_sensor_outputs();
+
   // Contacts of the last step with a positive normal force.
   std::vector<Contact> contacts() const;
 
@@ -171,6 +189,8 @@ class World {
   std::vector<OdometrySample> take_odometry();
 
  private:
+  void update_sensors();
+
   struct Impl;
   WorldDescription desc_;
   WorldOptions options_;

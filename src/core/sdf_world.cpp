@@ -1,6 +1,7 @@
 // SDF worlds through sdformat: models, links, collision and visual shapes with surface friction and
 // materials, gravity, step size, the sun, and the <state> block's poses.
 #include <sdf/sdf.hh>
+#include <sdf/Scene.hh>
 
 #include <cstdlib>
 #include <fstream>
@@ -216,6 +217,10 @@ WorldDescription convert(const sdf::Root& root, const std::string& source) {
     d.real_time_factor = ph->RealTimeFactor();
   }
   if (!(d.step_size > 0.0)) throw LoadError(source, 0, "world/physics/max_step_size", "step size must be > 0");
+  if (const sdf::Scene* sc = w->Scene()) {
+    d.ambient = (sc->Ambient().R() + sc->Ambient().G() + sc->Ambient().B()) / 3.0;
+    d.background = Eigen::Vector3d(sc->Background().R(), sc->Background().G(), sc->Background().B());
+  }
   for (uint64_t i = 0; i < w->LightCount(); ++i) {
     const sdf::Light* l = w->LightByIndex(i);
     if (l->Type() != sdf::LightType::DIRECTIONAL) continue;

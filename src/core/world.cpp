@@ -18,6 +18,10 @@
 #include <stdexcept>
 
 #include "bodies.hpp"
+#include "car_sim/raycast.hpp"
+
+#include <fstream>
+#include <sstream>
 
 namespace car_sim {
 
@@ -59,6 +63,53 @@ btScalar no_restitution(const btCollisionObject*, const btCollisionObject*) { re
 
 bool is_identity(const Eigen::Isometry3d& T) {
   return T.translation().norm() < 1e-12 && (T.linear() - Eigen::Matrix3d::Identity()).norm() < 1e-12;
+}
+
+// Gazebo's standard materials as colours (config/gazebo_materials.txt, shared with the Python tools).
+const std::map<std::string, Eigen::Vector4d>& gazebo_colours() {
+  static const std::map<std::string, Eigen::Vector4d> table = [] {
+    std::map<std::string, Eigen::Vector4d> t;
+    std::ifstream in(CAR_CONFIG_DIR "/gazebo_materials.txt");
+    std::string line;
+    while (std::getline(in, line)) {
+      line = line.substr(0, line.find('#'));
+      std::istringstream ls(line);
+      std::string name;
+      Eigen::Vector4d c;
+      if (ls >> name >> c[0] >> c[1] >> c[2] >> c[3]) t[name] = c;
+    }
+    return t;
+  }();
+  return table;
+}
+
+// How a URDF link looks: its <gazebo><material> (what Gazebo renders), else its URDF colour, else grey.
+SurfaceLook urdf_look(const Link& l) {
+  SurfaceLook look;
+  look.laser_retro = l.gazebo.laser_retro.value_or(0.0);
+  const auto it = gazebo_colours().find(l.gazebo.material);
+  if (it != gazebo_colours().end()) {
+    look.rgba = it->second;
+    return look;
+  }
+  for (const auto& v : l.visuals)
+    if (v.material.has_rgba) {
+      look.rgba = v.material.rgba;
+      return look;
+    }
+  return look;
+}
+
+// How an SDF link looks: its first visual's script (when known), else <diffuse>, else <ambient>, else grey.
+SurfaceLook sdf_look(const WorldLink& l) {
+  SurfaceLook look;
+  if (l.visuals.empty()) return look;
+  const WorldVisual& v = l.visuals.front();
+  const auto it = gazebo_colours().find(v.script_name);
+  if (it != gazebo_colours().end()) look.rgba = it->second;
+  else if (v.material.has_rgba) look.rgba = v.material.rgba;
+  else if (v.has_ambient) look.rgba = v.ambient;
+  return look;
 }
 
 }  // namespace
@@ -107,6 +158,24 @@ struct World::Impl {
   };
   std::vector<std::unique_ptr<Robot>> robots;
   std::vector<OdometrySample> odom_out;
+
+  // ---- sensors ----
+  struct SensorRt {
+    SensorInfo info;
+    std::unique_ptr<Sensor> sensor;
+    Eigen::Isometry3d link_to_sensor = Eigen::Isometry3d::Identity();
+    double period = 0.0;      // [s], 0 = every step
+    double next_time = 0.0;   // [s] of the next measurement
+    bool active = false;
+    std::mt19937_64 rng;
+    Eigen::Isometry3d history[3];
+    int history_count = 0;
+  };
+  std::vector<SensorRt> sensors;
+  SensorOutputs sensor_out;
+  std::unique_ptr<RayScene> rays;
+  std::set<std::pair<std::string, std::string>> active;  // (robot, plug-in) that someone listens to
+  std::vector<std::pair<int, const btCollisionObject*>> moving_ray_bodies;  // ray body -> its Bullet object
   std::vector<std::string> object_names;      // btCollisionObject user index -> "model/link"
 
   void name_object(btCollisionObject* o, const std::string& name) {
@@ -371,6 +440,51 @@ struct World::Impl {
     robots.push_back(std::move(r));
   }
 
+  // The ray scene mirrors the collision geometry: static shapes at their world poses, every moving body (world
+  // rigid bodies, robot bodies split per link for their colours) as an instance in its Bullet com frame.
+  // Robot wheels are seen as the cylinders they are, not the spheres they roll on.
+  void build_rays(const WorldDescription& desc) {
+    rays = std::make_unique<RayScene>();
+    moving_ray_bodies.clear();
+    for (const auto& m : desc.models) {
+      if (!m.is_static) continue;
+      for (const auto& l : m.links) {
+        std::vector<std::pair<Shape, Eigen::Isometry3d>> shapes;
+        for (const auto& c : l.collisions) shapes.emplace_back(c.shape, m.pose * l.pose * c.shape.origin);
+        if (!shapes.empty()) rays->add_body(shapes, sdf_look(l));
+      }
+    }
+    for (const auto& dm : dyn_models) {
+      for (size_t i = 0; i < dm.bodies.size(); ++i) {
+        const WorldLink& l = dm.desc->links[i];
+        std::vector<std::pair<Shape, Eigen::Isometry3d>> shapes;
+        for (const auto& c : l.collisions) shapes.emplace_back(c.shape, dm.link_to_com[i].inverse() * c.shape.origin);
+        if (shapes.empty()) continue;
+        moving_ray_bodies.emplace_back(rays->add_body(shapes, sdf_look(l)), dm.bodies[i]);
+      }
+    }
+    for (auto& r : robots) {
+      for (size_t b = 0; b < r->tree.bodies.size(); ++b) {
+        const Body& body = r->tree.bodies[b];
+        const btCollisionObject* col = b == 0 ? r->mb->getBaseCollider() : r->mb->getLink(static_cast<int>(b) - 1).m_collider;
+        if (!col) continue;
+        for (const auto& name : body.links) {
+          const Link* l = r->info.model.find_link(name);
+          std::vector<std::pair<Shape, Eigen::Isometry3d>> shapes;
+          for (const auto& c : l->collisions)
+            shapes.emplace_back(c, body.top_to_com.inverse() * r->tree.link_in_top.at(name) * c.origin);
+          if (shapes.empty()) continue;
+          moving_ray_bodies.emplace_back(rays->add_body(shapes, urdf_look(*l)), col);
+        }
+      }
+    }
+  }
+
+  void update_rays() {
+    for (const auto& [body, obj] : moving_ray_bodies) rays->set_pose(body, eig(obj->getWorldTransform()));
+    rays->commit();
+  }
+
   Robot* find_robot(const std::string& name) {
     for (auto& r : robots)
       if (r->info.name == name) return r.get();
@@ -495,7 +609,29 @@ void World::spawn(const RobotModel& model, const std::string& name, const Eigen:
     if (pc.kind == "diff_drive") r->info.drives.push_back(DiffDriveConfig::from(pc, name));
   r->info.spawn_pose = pose;
   r->tree = detail::build_bodies(r->info.model);
+  const RobotInfo& info = r->info;
+  std::vector<Impl::SensorRt> new_sensors;
+  for (const auto& pc : info.config.plugins) {
+    if (pc.kind == "diff_drive") continue;
+    Impl::SensorRt s;
+    s.info.robot = name;
+    s.info.config = pc;
+    s.info.link = pc.link;
+    s.sensor = make_sensor(pc, name);
+    if (!s.sensor) continue;
+    for (const auto& spec : info.model.sensors)
+      if (spec.name == pc.sensor && spec.link == pc.link) s.link_to_sensor = spec.pose;
+    const double rate = pc.sensor.empty() ? pc.number("updateRate") : pc.number("update_rate");
+    s.info.rate = rate;
+    s.period = rate > 0 ? 1.0 / rate : 0.0;
+    s.next_time = time() + s.period;
+    s.rng = sensor_rng(options_.seed, name, pc.sensor.empty() ? pc.name : pc.sensor);
+    s.active = impl_->active.count({name, pc.name}) > 0;
+    new_sensors.push_back(std::move(s));
+  }
   impl_->add_robot(std::move(r), desc_.step_size);
+  for (auto& s : new_sensors) impl_->sensors.push_back(std::move(s));
+  impl_->rays.reset();
 }
 
 void World::remove(const std::string& name) {
@@ -515,7 +651,11 @@ void World::remove(const std::string& name) {
       }
     }
     impl_->world.removeMultiBody(R.mb);
+    auto& ss = impl_->sensors;
+    ss.erase(std::remove_if(ss.begin(), ss.end(), [&](const Impl::SensorRt& x) { return x.info.robot == name; }),
+             ss.end());
     robots.erase(it);
+    impl_->rays.reset();
     return;
   }
   if (!desc_.find_model(name)) throw std::invalid_argument("no model named '" + name + "'");
@@ -528,6 +668,7 @@ void World::remove(const std::string& name) {
     objs.erase(std::remove_if(objs.begin(), objs.end(), [o](const auto& p) { return p.get() == o; }), objs.end());
   }
   impl_->model_objects.erase(name);
+  impl_->rays.reset();
   auto& dms = impl_->dyn_models;
   dms.erase(std::remove_if(dms.begin(), dms.end(), [&](const Impl::DynModel& x) { return x.name == name; }), dms.end());
   // A world model leaves the description too, so a reset does not bring it back (as in Gazebo).
@@ -555,7 +696,73 @@ void World::step(uint64_t n) {
         if (tick_ % d.period == 0) impl_->update_drive(*r, k, tick_, dt);
       }
     }
+    update_sensors();
   }
+}
+
+void World::update_sensors() {
+  const double t = time();
+  bool rays_fresh = false;
+  for (auto& s : impl_->sensors) {
+    const bool history = s.sensor->needs_history();
+    if (history && s.active) {
+      // the sensor frame's last three poses, for finite differences
+      s.history[0] = s.history[1];
+      s.history[1] = s.history[2];
+      s.history[2] = link_pose(s.info.robot, s.info.link) * s.link_to_sensor;
+      s.history_count = std::min(3, s.history_count + 1);
+    }
+    const bool due = s.period <= 0.0 || t + 1e-9 >= s.next_time;
+    if (!due) continue;
+    if (s.period > 0.0) {
+      s.next_time += s.period;
+      if (s.next_time <= t) s.next_time = t + s.period;  // after a pause in activity, no burst
+    }
+    if (!s.active || (history && s.history_count < 3)) continue;
+    SensorInput in;
+    in.tick = tick_;
+    in.dt = desc_.step_size;
+    in.pose = link_pose(s.info.robot, s.info.link) * s.link_to_sensor;
+    in.gravity = desc_.gravity;
+    in.sun_direction = desc_.sun_direction;
+    in.ambient = desc_.ambient;
+    in.background = desc_.background;
+    in.history = s.history;
+    if (s.sensor->needs_rays()) {
+      if (!impl_->rays) impl_->build_rays(desc_);
+      if (!rays_fresh) impl_->update_rays();
+      rays_fresh = true;
+      in.scene = impl_->rays.get();
+    }
+    s.sensor->update(in, s.rng, &impl_->sensor_out);
+  }
+}
+
+std::vector<SensorInfo> World::sensors() const {
+  std::vector<SensorInfo> out;
+  for (const auto& s : impl_->sensors) out.push_back(s.info);
+  return out;
+}
+
+void World::set_sensor_active(const std::string& robot, const std::string& plugin, bool active) {
+  bool found = false;
+  for (auto& s : impl_->sensors) {
+    if (s.info.robot != robot || s.info.config.name != plugin) continue;
+    found = true;
+    if (active && !s.active) s.history_count = 0;
+    s.active = active;
+  }
+  if (!found) throw std::invalid_argument("robot '" + robot + "' has no sensor plug-in '" + plugin + "'");
+  if (active)
+    impl_->active.insert({robot, plugin});
+  else
+    impl_->active.erase({robot, plugin});
+}
+
+SensorOutputs World::take_sensor_outputs() {
+  SensorOutputs out;
+  std::swap(out, impl_->sensor_out);
+  return out;
 }
 
 void World::reset() {
@@ -566,7 +773,9 @@ void World::reset() {
 void World::reset_poses() {
   std::vector<RobotInfo> infos;
   for (auto& r : impl_->robots) infos.push_back(r->info);
+  const auto active = impl_->active;
   impl_ = std::make_unique<Impl>(desc_, options_);
+  impl_->active = active;
   for (const auto& m : desc_.models) impl_->add_world_model(m);
   for (const auto& info : infos) spawn(info.model, info.name, info.spawn_pose, info.robot_namespace);
   impl_->odom_out.clear();

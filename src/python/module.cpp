@@ -1,6 +1,7 @@
 // car._core: the pybind11 skin over the car_sim core. Models come back as plain dicts and lists;
 // LoadError becomes car._core.LoadError (a ValueError) with the core's "file:line: element: reason" text.
 #include <pybind11/pybind11.h>
+#include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
 #include "car_sim/model.hpp"
@@ -370,12 +371,13 @@ PYBIND11_MODULE(_core, m) {
       py::arg("xml"), py::arg("source") = "<string>", "load_world_file for SDF text.");
 
   py::class_<World>(m, "World", "A simulated world, stepped in fixed ticks. No ROS master needed.")
-      .def(py::init([](const std::optional<std::string>& world_file, int solver_iterations) {
+      .def(py::init([](const std::optional<std::string>& world_file, int solver_iterations, uint64_t seed) {
              WorldOptions o;
              o.solver_iterations = solver_iterations;
+             o.seed = seed;
              return std::make_unique<World>(world_file ? load_world_file(*world_file) : empty_world(), o);
            }),
-           py::arg("world_file") = py::none(), py::arg("solver_iterations") = 10,
+           py::arg("world_file") = py::none(), py::arg("solver_iterations") = 10, py::arg("seed") = 0,
            "Load an SDF world file, or Gazebo's empty world (ground plane, sun) when None.")
       .def_property_readonly("dt", &World::dt, "step size [s]")
       .def_property_readonly("tick", &World::tick, "steps taken since the start or the last reset")
@@ -450,6 +452,85 @@ PYBIND11_MODULE(_core, m) {
             return out;
           },
           "Contacts of the last step with a positive normal force [N].")
+      .def(
+          "sensors",
+          [](const World& w) {
+            py::list out;
+            for (const auto& s : w.sensors()) {
+              py::dict d;
+              d["robot"] = s.robot;
+              d["plugin"] = s.config.name;
+              d["sensor"] = s.config.sensor;
+              d["kind"] = s.config.kind;
+              d["link"] = s.link;
+              d["rate"] = s.rate;
+              out.append(d);
+            }
+            return out;
+          },
+          "Every sensor plug-in of every robot.")
+      .def("set_sensor_active", &World::set_sensor_active, py::arg("robot"), py::arg("plugin"), py::arg("active") = true,
+           "A sensor computes only while active.")
+      .def(
+          "take_sensor_outputs",
+          [](World& w) {
+            const SensorOutputs o = w.take_sensor_outputs();
+            py::dict out;
+            py::list scans, images, imus;
+            for (const auto& s : o.scans) {
+              py::dict d;
+              d["robot"] = s.robot;
+              d["plugin"] = s.plugin;
+              d["tick"] = s.tick;
+              d["time"] = static_cast<double>(s.tick) * w.dt();
+              d["angle_min"] = s.angle_min;
+              d["angle_max"] = s.angle_max;
+              d["angle_increment"] = s.angle_increment;
+              d["range_min"] = s.range_min;
+              d["range_max"] = s.range_max;
+              d["ranges"] = py::array_t<float>(std::vector<ssize_t>{ssize_t(s.ranges.size())}, s.ranges.data());
+              d["intensities"] = py::array_t<float>(std::vector<ssize_t>{ssize_t(s.intensities.size())}, s.intensities.data());
+              scans.append(d);
+            }
+            for (const auto& c : o.images) {
+              py::dict d;
+              d["robot"] = c.robot;
+              d["plugin"] = c.plugin;
+              d["tick"] = c.tick;
+              d["time"] = static_cast<double>(c.tick) * w.dt();
+              d["width"] = c.width;
+              d["height"] = c.height;
+              d["f"] = c.f;
+              d["cx"] = c.cx;
+              d["cy"] = c.cy;
+              d["encoding"] = c.encoding;
+              const ssize_t ch = c.encoding == "mono8" ? 1 : 3;
+              d["image"] = py::array_t<uint8_t>({ssize_t(c.height), ssize_t(c.width), ch}, c.image.data());
+              if (c.has_depth) {
+                d["depth"] = py::array_t<float>({ssize_t(c.height), ssize_t(c.width)}, c.depth.data());
+                d["points"] = py::array_t<float>({ssize_t(c.height), ssize_t(c.width), ssize_t(3)}, c.points.data());
+                d["point_rgb"] =
+                    py::array_t<uint8_t>({ssize_t(c.height), ssize_t(c.width), ssize_t(3)}, c.point_rgb.data());
+              }
+              images.append(d);
+            }
+            for (const auto& m : o.imus) {
+              py::dict d;
+              d["robot"] = m.robot;
+              d["plugin"] = m.plugin;
+              d["tick"] = m.tick;
+              d["orientation"] = py::cast(std::vector<double>{m.orientation.x(), m.orientation.y(), m.orientation.z(),
+                                                              m.orientation.w()});
+              d["angular_velocity"] = vec(m.angular_velocity);
+              d["linear_acceleration"] = vec(m.linear_acceleration);
+              imus.append(d);
+            }
+            out["scans"] = scans;
+            out["images"] = images;
+            out["imus"] = imus;
+            return out;
+          },
+          "Sensor measurements since the last call: {'scans', 'images', 'imus'}, arrays as NumPy.")
       .def(
           "take_odometry",
           [](World& w) {

@@ -11,11 +11,17 @@
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/Imu.h>
 #include <sensor_msgs/JointState.h>
+#include <sensor_msgs/LaserScan.h>
+#include <sensor_msgs/PointCloud2.h>
 #include <std_srvs/Empty.h>
 #include <tf2_ros/transform_broadcaster.h>
 
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -29,6 +35,22 @@ namespace car_ros {
 
 using car_sim::World;
 
+// Publishers of one sensor plug-in.
+struct SensorIO {
+  car_sim::SensorInfo info;
+  std::string frame;
+  ros::Publisher scan, image, info_pub, depth, depth_info, points, imu;
+  double info_period = 0.0;  // [s] camera_info throttle (the plug-in's updateRate), 0 = with every image
+  ros::Time last_info;
+  bool active = false;
+
+  bool listened() const {
+    for (const ros::Publisher* p : {&scan, &image, &info_pub, &depth, &depth_info, &points, &imu})
+      if (*p && p->getNumSubscribers() > 0) return true;
+    return false;
+  }
+};
+
 // Publishers and subscribers of one spawned robot.
 struct RobotIO {
   struct Drive {
@@ -40,6 +62,7 @@ struct RobotIO {
   std::vector<Drive> drives;
   ros::Publisher joint_states;  // every non-fixed joint
   ros::Publisher ground_truth;
+  std::vector<SensorIO> sensors;
 };
 
 class SimNode {
@@ -55,12 +78,15 @@ class SimNode {
     pnh_.param("joint_state_rate", joint_state_rate_, 50.0);
     pnh_.param("model_states_rate", model_states_rate_, 100.0);
     pnh_.param("solver_iterations", solver_iterations_, 10);
+    int seed = 0;
+    pnh_.param("seed", seed, 0);
     if (!(rtf_ >= 0.0) || !std::isfinite(rtf_)) {
       ROS_FATAL("car: parameter ~rtf must be >= 0 (0 = as fast as possible), got %g", rtf_);
       return false;
     }
     car_sim::WorldOptions options;
     options.solver_iterations = solver_iterations_;
+    options.seed = static_cast<uint64_t>(seed);
     try {
       world_ = std::make_unique<World>(world_file.empty() ? car_sim::empty_world() : car_sim::load_world_file(world_file),
                                        options);
@@ -152,6 +178,9 @@ class SimNode {
     const ros::Time now = sim_time(tick, world_->dt());
     if (tick % period_of(clock_rate_) == 0) publish_clock();
     for (const auto& o : world_->take_odometry()) publish_odometry(o);
+    // sensors compute only while someone listens; look every 50 steps
+    if (tick % 50 == 0) update_sensor_activity();
+    publish_sensors(world_->take_sensor_outputs());
     if (tick % period_of(joint_state_rate_) == 0) {
       for (const auto& name : world_->robot_names()) {
         sensor_msgs::JointState js;
@@ -184,6 +213,173 @@ class SimNode {
       }
       model_states_pub_.publish(ms);
     }
+  }
+
+  void update_sensor_activity() {
+    for (auto& [name, io] : io_)
+      for (auto& s : io.sensors) {
+        const bool want = s.listened();
+        if (want != s.active) {
+          world_->set_sensor_active(name, s.info.config.name, want);
+          s.active = want;
+        }
+      }
+  }
+
+  SensorIO* sensor_io(const std::string& robot, const std::string& plugin) {
+    auto it = io_.find(robot);
+    if (it == io_.end()) return nullptr;
+    for (auto& s : it->second.sensors)
+      if (s.info.config.name == plugin) return &s;
+    return nullptr;
+  }
+
+  void publish_sensors(const car_sim::SensorOutputs& out) {
+    const double dt = world_->dt();
+    for (const auto& o : out.scans) {
+      SensorIO* io = sensor_io(o.robot, o.plugin);
+      if (!io) continue;
+      sensor_msgs::LaserScan m;
+      m.header.stamp = sim_time(o.tick, dt);
+      m.header.frame_id = io->frame;
+      m.angle_min = o.angle_min;
+      m.angle_max = o.angle_max;
+      m.angle_increment = o.angle_increment;
+      m.time_increment = 0.f;
+      m.scan_time = 0.f;
+      m.range_min = o.range_min;
+      m.range_max = o.range_max;
+      m.ranges = o.ranges;
+      m.intensities = o.intensities;
+      io->scan.publish(m);
+    }
+    for (const auto& o : out.images) {
+      SensorIO* io = sensor_io(o.robot, o.plugin);
+      if (!io) continue;
+      const ros::Time stamp = sim_time(o.tick, dt);
+      const auto& cfg = io->info.config;
+      if (io->image.getNumSubscribers() > 0) {
+        sensor_msgs::Image im;
+        im.header.stamp = stamp;
+        im.header.frame_id = io->frame;
+        im.height = o.height;
+        im.width = o.width;
+        im.encoding = o.encoding;
+        im.is_bigendian = 0;
+        im.step = o.width * (o.encoding == "mono8" ? 1 : 3);
+        im.data = o.image;
+        io->image.publish(im);
+      }
+      const bool info_due = io->info_period <= 0.0 || (stamp - io->last_info).toSec() >= io->info_period - 1e-9 ||
+                            stamp < io->last_info;
+      if (info_due) {
+        const sensor_msgs::CameraInfo ci = camera_info(o, cfg, io->frame, stamp);
+        io->info_pub.publish(ci);
+        if (io->depth_info) io->depth_info.publish(ci);
+        io->last_info = stamp;
+      }
+      if (!o.has_depth) continue;
+      const bool mm = cfg.flag("useDepth16UC1Format");
+      if (io->depth.getNumSubscribers() > 0) {
+        sensor_msgs::Image d;
+        d.header.stamp = stamp;
+        d.header.frame_id = io->frame;
+        d.height = o.height;
+        d.width = o.width;
+        d.is_bigendian = 0;
+        if (mm) {
+          d.encoding = "16UC1";
+          d.step = o.width * 2;
+          d.data.resize(static_cast<size_t>(d.step) * o.height);
+          auto* px = reinterpret_cast<uint16_t*>(d.data.data());
+          for (size_t i = 0; i < o.depth.size(); ++i)
+            px[i] = std::isfinite(o.depth[i]) ? static_cast<uint16_t>(std::lround(o.depth[i] * 1000.0f)) : 0;
+        } else {
+          d.encoding = "32FC1";
+          d.step = o.width * 4;
+          d.data.resize(static_cast<size_t>(d.step) * o.height);
+          std::memcpy(d.data.data(), o.depth.data(), d.data.size());
+        }
+        io->depth.publish(d);
+      }
+      if (io->points.getNumSubscribers() > 0) io->points.publish(point_cloud(o, io->frame, stamp));
+    }
+    for (const auto& o : out.imus) {
+      SensorIO* io = sensor_io(o.robot, o.plugin);
+      if (!io) continue;
+      sensor_msgs::Imu m;
+      m.header.stamp = sim_time(o.tick, dt);
+      m.header.frame_id = io->frame;
+      m.orientation.x = o.orientation.x();
+      m.orientation.y = o.orientation.y();
+      m.orientation.z = o.orientation.z();
+      m.orientation.w = o.orientation.w();
+      m.angular_velocity.x = o.angular_velocity.x();
+      m.angular_velocity.y = o.angular_velocity.y();
+      m.angular_velocity.z = o.angular_velocity.z();
+      m.linear_acceleration.x = o.linear_acceleration.x();
+      m.linear_acceleration.y = o.linear_acceleration.y();
+      m.linear_acceleration.z = o.linear_acceleration.z();
+      const double var = std::pow(io->info.config.number("gaussianNoise"), 2);
+      for (int i = 0; i < 3; ++i) {
+        m.orientation_covariance[i * 4] = var;
+        m.angular_velocity_covariance[i * 4] = var;
+        m.linear_acceleration_covariance[i * 4] = var;
+      }
+      io->imu.publish(m);
+    }
+  }
+
+  static sensor_msgs::CameraInfo camera_info(const car_sim::CameraOut& o, const car_sim::PluginConfig& cfg,
+                                             const std::string& frame, const ros::Time& stamp) {
+    sensor_msgs::CameraInfo ci;
+    ci.header.stamp = stamp;
+    ci.header.frame_id = frame;
+    ci.width = o.width;
+    ci.height = o.height;
+    ci.distortion_model = "plumb_bob";
+    ci.D = {cfg.number("distortionK1"), cfg.number("distortionK2"), cfg.number("distortionT1"),
+            cfg.number("distortionT2"), cfg.number("distortionK3")};
+    ci.K = {o.f, 0, o.cx, 0, o.f, o.cy, 0, 0, 1};
+    ci.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    ci.P = {o.f, 0, o.cx, -o.f * cfg.number("hackBaseline"), 0, o.f, o.cy, 0, 0, 0, 1, 0};
+    return ci;
+  }
+
+  static sensor_msgs::PointCloud2 point_cloud(const car_sim::CameraOut& o, const std::string& frame,
+                                              const ros::Time& stamp) {
+    sensor_msgs::PointCloud2 pc;
+    pc.header.stamp = stamp;
+    pc.header.frame_id = frame;
+    pc.height = o.height;
+    pc.width = o.width;
+    const char* names[4] = {"x", "y", "z", "rgb"};
+    const uint32_t offsets[4] = {0, 4, 8, 16};
+    for (int k = 0; k < 4; ++k) {
+      sensor_msgs::PointField f;
+      f.name = names[k];
+      f.offset = offsets[k];
+      f.datatype = sensor_msgs::PointField::FLOAT32;
+      f.count = 1;
+      pc.fields.push_back(f);
+    }
+    pc.is_bigendian = false;
+    pc.point_step = 32;
+    pc.row_step = 32 * o.width;
+    const size_t n = static_cast<size_t>(o.width) * o.height;
+    pc.data.assign(32 * n, 0);
+    bool dense = true;
+    for (size_t i = 0; i < n; ++i) {
+      uint8_t* p = pc.data.data() + 32 * i;
+      std::memcpy(p, &o.points[3 * i], 12);
+      // rgb packed as 0x00RRGGBB in a float's bits, as PCL and rviz read it
+      const uint32_t rgb = (uint32_t(o.point_rgb[3 * i]) << 16) | (uint32_t(o.point_rgb[3 * i + 1]) << 8) |
+                           uint32_t(o.point_rgb[3 * i + 2]);
+      std::memcpy(p + 16, &rgb, 4);
+      if (!std::isfinite(o.points[3 * i + 2])) dense = false;
+    }
+    pc.is_dense = dense;
+    return pc;
   }
 
   void publish_odometry(const car_sim::OdometrySample& o) {
@@ -262,6 +458,44 @@ class SimNode {
                cfg.publish_wheel_tf ? ", wheel TF" : "", cfg.publish_wheel_joint_state ? ", wheel joint states" : "");
       set_debug_level(cfg);
       io.drives.push_back(std::move(d));
+    }
+    for (const auto& si : world_->sensors()) {
+      if (si.robot != name) continue;
+      SensorIO sio;
+      sio.info = si;
+      const car_sim::PluginConfig& c = si.config;
+      std::string ns = c.text("robotNamespace");
+      while (!ns.empty() && ns.front() == '/') ns.erase(ns.begin());
+      while (!ns.empty() && ns.back() == '/') ns.pop_back();
+      sio.frame = frame(c.text("frameName"));
+      std::string topics;
+      if (c.kind == "laser") {
+        sio.scan = nh_.advertise<sensor_msgs::LaserScan>(topic_in(ns, c.text("topicName")), 10);
+        topics = sio.scan.getTopic();
+      } else if (c.kind == "openni_kinect" || c.kind == "camera") {
+        std::string base = ns;
+        const std::string cam = frame(c.text("cameraName"));
+        if (!cam.empty()) base = base.empty() ? cam : base + "/" + cam;
+        sio.image = nh_.advertise<sensor_msgs::Image>(topic_in(base, c.text("imageTopicName")), 2);
+        sio.info_pub = nh_.advertise<sensor_msgs::CameraInfo>(topic_in(base, c.text("cameraInfoTopicName")), 2);
+        topics = sio.image.getTopic() + ", " + sio.info_pub.getTopic();
+        if (c.kind == "openni_kinect") {
+          sio.depth = nh_.advertise<sensor_msgs::Image>(topic_in(base, c.text("depthImageTopicName")), 2);
+          sio.depth_info =
+              nh_.advertise<sensor_msgs::CameraInfo>(topic_in(base, c.text("depthImageCameraInfoTopicName")), 2);
+          sio.points = nh_.advertise<sensor_msgs::PointCloud2>(topic_in(base, c.text("pointCloudTopicName")), 2);
+          topics += ", " + sio.depth.getTopic() + ", " + sio.depth_info.getTopic() + ", " + sio.points.getTopic();
+        }
+        const double r = c.number("updateRate");
+        sio.info_period = r > 0 ? 1.0 / r : 0.0;
+      } else if (c.kind == "imu") {
+        sio.imu = nh_.advertise<sensor_msgs::Imu>(topic_in(ns, c.text("topicName")), 10);
+        topics = sio.imu.getTopic();
+      }
+      ROS_INFO("car: %s: sensor '%s' (%s, %s) on %s at %g Hz, frame %s: %s", name.c_str(), c.sensor.c_str(),
+               c.sensor_type.empty() ? c.kind.c_str() : c.sensor_type.c_str(), c.filename.c_str(), si.link.c_str(),
+               si.rate, sio.frame.c_str(), topics.c_str());
+      io.sensors.push_back(std::move(sio));
     }
     io_[name] = std::move(io);
   }
