@@ -766,8 +766,9 @@ SensorOutputs World::take_sensor_outputs() {
 }
 
 void World::reset() {
-  reset_poses();
+  // time first: the sensors' schedules restart from it
   tick_ = 0;
+  reset_poses();
 }
 
 void World::reset_poses() {
