@@ -20,6 +20,8 @@
 #include <std_srvs/Empty.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <malloc.h>
+
 #include <chrono>
 #include <cstring>
 #include <cmath>
@@ -667,6 +669,10 @@ class SimNode {
 }  // namespace car_ros
 
 int main(int argc, char** argv) {
+  // Camera frames are several MB each: keep freed blocks in the heap instead of returning them to the kernel,
+  // so the next frame does not pay page faults (glibc otherwise mmaps blocks over 128 kB).
+  mallopt(M_MMAP_THRESHOLD, 256 << 20);
+  mallopt(M_TRIM_THRESHOLD, 512 << 20);
   ros::init(argc, argv, "gazebo");
   car_ros::SimNode node;
   if (!node.init()) return 1;

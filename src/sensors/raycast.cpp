@@ -264,27 +264,31 @@ int RayScene::body_count() const { return static_cast<int>(impl_->bodies.size())
 
 void RayScene::cast(const Eigen::Vector3d& origin, const Eigen::Matrix3d& rotation, const float* directions, int n,
                     const float* t_near, bool t_near_per_ray, float t_far, RayHit* out) const {
-  const Eigen::Vector3f o = origin.cast<float>();
-  const Eigen::Matrix3f R = rotation.cast<float>();
+  const float ox = static_cast<float>(origin.x()), oy = static_cast<float>(origin.y()), oz = static_cast<float>(origin.z());
+  float R[9];  // row-major
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) R[3 * r + c] = static_cast<float>(rotation(r, c));
   const int packets = (n + 15) / 16;
   const float inf = std::numeric_limits<float>::infinity();
+  const Impl& im = *impl_;
 #pragma omp parallel for schedule(static)
   for (int p = 0; p < packets; ++p) {
     alignas(64) RTCRayHit16 rh;
     alignas(64) int valid[16];
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
+    const int base = p * 16;
+    const int count = std::min(16, n - base);
     for (int k = 0; k < 16; ++k) {
-      const int i = p * 16 + k;
-      valid[k] = i < n ? -1 : 0;
-      const int j = i < n ? i : n - 1;
-      const Eigen::Vector3f d = R * Eigen::Vector3f(directions[3 * j], directions[3 * j + 1], directions[3 * j + 2]);
-      rh.ray.org_x[k] = o.x();
-      rh.ray.org_y[k] = o.y();
-      rh.ray.org_z[k] = o.z();
-      rh.ray.dir_x[k] = d.x();
-      rh.ray.dir_y[k] = d.y();
-      rh.ray.dir_z[k] = d.z();
+      const int j = base + (k < count ? k : count - 1);
+      const float* d = directions + 3 * j;
+      valid[k] = k < count ? -1 : 0;
+      rh.ray.org_x[k] = ox;
+      rh.ray.org_y[k] = oy;
+      rh.ray.org_z[k] = oz;
+      rh.ray.dir_x[k] = R[0] * d[0] + R[1] * d[1] + R[2] * d[2];
+      rh.ray.dir_y[k] = R[3] * d[0] + R[4] * d[1] + R[5] * d[2];
+      rh.ray.dir_z[k] = R[6] * d[0] + R[7] * d[1] + R[8] * d[2];
       rh.ray.tnear[k] = t_near_per_ray ? t_near[j] : t_near[0];
       rh.ray.tfar[k] = t_far;
       rh.ray.mask[k] = 0xFFFFFFFF;
@@ -293,11 +297,9 @@ void RayScene::cast(const Eigen::Vector3d& origin, const Eigen::Matrix3d& rotati
       rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
       rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
     }
-    rtcIntersect16(valid, impl_->top, &ctx, &rh);
-    for (int k = 0; k < 16; ++k) {
-      const int i = p * 16 + k;
-      if (i >= n) break;
-      RayHit& h = out[i];
+    rtcIntersect16(valid, im.top, &ctx, &rh);
+    for (int k = 0; k < count; ++k) {
+      RayHit& h = out[base + k];
       if (rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) {
         h.distance = inf;
         h.normal.setZero();
@@ -305,13 +307,17 @@ void RayScene::cast(const Eigen::Vector3d& origin, const Eigen::Matrix3d& rotati
         continue;
       }
       h.distance = rh.ray.tfar[k];
-      const int body = impl_->body_of_instance[rh.hit.instID[0][k]];
+      const int body = im.body_of_instance[rh.hit.instID[0][k]];
       h.body = body;
-      Eigen::Vector3f nrm = impl_->bodies[body].rotation * Eigen::Vector3f(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]);
-      nrm.normalize();
-      const Eigen::Vector3f d(rh.ray.dir_x[k], rh.ray.dir_y[k], rh.ray.dir_z[k]);
-      if (nrm.dot(d) > 0) nrm = -nrm;
-      h.normal = nrm;
+      // the hit normal is in the instance's frame: into the world, unit, facing the ray
+      const Eigen::Matrix3f& B = im.bodies[body].rotation;
+      const float nx = rh.hit.Ng_x[k], ny = rh.hit.Ng_y[k], nz = rh.hit.Ng_z[k];
+      float wx = B(0, 0) * nx + B(0, 1) * ny + B(0, 2) * nz;
+      float wy = B(1, 0) * nx + B(1, 1) * ny + B(1, 2) * nz;
+      float wz = B(2, 0) * nx + B(2, 1) * ny + B(2, 2) * nz;
+      float s = 1.f / std::sqrt(wx * wx + wy * wy + wz * wz);
+      if (wx * rh.ray.dir_x[k] + wy * rh.ray.dir_y[k] + wz * rh.ray.dir_z[k] > 0) s = -s;
+      h.normal = Eigen::Vector3f(wx * s, wy * s, wz * s);
     }
   }
 }

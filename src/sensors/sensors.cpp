@@ -132,6 +132,7 @@ class Camera : public Sensor {
     }
     t_far_ = static_cast<float>(far_ / min_cos);
     hits_.resize(n);
+    rgb_.resize(3 * n);
     const int channels = out_.encoding == "mono8" ? 1 : 3;
     out_.image.resize(n * channels);
     if (depth) {
@@ -151,7 +152,8 @@ class Camera : public Sensor {
     const bool bgr = out_.encoding == "bgr8";
     const float f = static_cast<float>(out_.f), cx = static_cast<float>(out_.cx), cy = static_cast<float>(out_.cy);
     const float far = static_cast<float>(far_);
-    std::normal_distribution<double> noise(noise_mean_, noise_stddev_ > 0 ? noise_stddev_ : 1.0);
+    // per pixel: depth, colour, point; independent pixels, so in parallel (noise, when configured, after)
+#pragma omp parallel for schedule(static)
     for (int i = 0; i < n; ++i) {
       const RayHit& h = hits_[i];
       // depth along the optical axis; beyond the far clip is no hit
@@ -164,20 +166,9 @@ class Camera : public Sensor {
         const float lit = std::min(1.f, ambient + 0.8f * std::max(0.f, h.normal.dot(light)));
         rgb = (m.head<3>().cast<float>() * lit).cwiseMin(1.f);
       }
-      if (gaussian_) {
-        for (int k = 0; k < 3; ++k) rgb[k] = std::clamp(rgb[k] + static_cast<float>(noise(rng)), 0.f, 1.f);
-      }
-      const uint8_t r = static_cast<uint8_t>(std::lround(rgb.x() * 255.f));
-      const uint8_t g = static_cast<uint8_t>(std::lround(rgb.y() * 255.f));
-      const uint8_t b = static_cast<uint8_t>(std::lround(rgb.z() * 255.f));
-      if (mono) {
-        out_.image[i] = static_cast<uint8_t>(std::lround(0.299f * r + 0.587f * g + 0.114f * b));
-      } else {
-        // fix: channel order follows the image format (upstream swaps R and B for R8G8B8)
-        out_.image[3 * i] = bgr ? b : r;
-        out_.image[3 * i + 1] = g;
-        out_.image[3 * i + 2] = bgr ? r : b;
-      }
+      rgb_[3 * i] = rgb.x();
+      rgb_[3 * i + 1] = rgb.y();
+      rgb_[3 * i + 2] = rgb.z();
       if (!out_.has_depth) continue;
       const bool valid = std::isfinite(d) && d > cutoff_ && d < cutoff_max_;
       const float dv = valid ? d : kNaN;
@@ -186,9 +177,30 @@ class Camera : public Sensor {
       out_.points[3 * i] = dv * (u - cx) / f;
       out_.points[3 * i + 1] = dv * (v - cy) / f;
       out_.points[3 * i + 2] = dv;
-      out_.point_rgb[3 * i] = r;
-      out_.point_rgb[3 * i + 1] = g;
-      out_.point_rgb[3 * i + 2] = b;
+    }
+    if (gaussian_) {
+      std::normal_distribution<double> noise(noise_mean_, noise_stddev_ > 0 ? noise_stddev_ : 1.0);
+      for (int i = 0; i < 3 * n; ++i) rgb_[i] = std::clamp(rgb_[i] + static_cast<float>(noise(rng)), 0.f, 1.f);
+    }
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < n; ++i) {
+      // [0, 1] to 0..255, rounded
+      const uint8_t r = static_cast<uint8_t>(rgb_[3 * i] * 255.f + 0.5f);
+      const uint8_t g = static_cast<uint8_t>(rgb_[3 * i + 1] * 255.f + 0.5f);
+      const uint8_t b = static_cast<uint8_t>(rgb_[3 * i + 2] * 255.f + 0.5f);
+      if (mono) {
+        out_.image[i] = static_cast<uint8_t>(0.299f * r + 0.587f * g + 0.114f * b + 0.5f);
+      } else {
+        // fix: channel order follows the image format (upstream swaps R and B for R8G8B8)
+        out_.image[3 * i] = bgr ? b : r;
+        out_.image[3 * i + 1] = g;
+        out_.image[3 * i + 2] = bgr ? r : b;
+      }
+      if (out_.has_depth) {
+        out_.point_rgb[3 * i] = r;
+        out_.point_rgb[3 * i + 1] = g;
+        out_.point_rgb[3 * i + 2] = b;
+      }
     }
     out_.tick = in.tick;
     out->images.push_back(out_);
@@ -201,6 +213,7 @@ class Camera : public Sensor {
   bool gaussian_ = false;
   double noise_mean_ = 0, noise_stddev_ = 0;
   std::vector<float> dirs_, cos_, t_near_;
+  std::vector<float> rgb_;  // [0, 1] per channel, before rounding
   float t_far_ = 0;
   std::vector<RayHit> hits_;
 };
