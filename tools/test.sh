@@ -2,13 +2,8 @@
 # Runs every test tier through catkin: gtest (core), pytest (tools), rostest (launch files).
 # The verdict comes from catkin_test_results, since `catkin_make run_tests` exits 0 on failures.
 set -euo pipefail
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-bash "$ROOT/tools/setup.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 cd "$ROOT/.ws"
-set +u
-# shellcheck disable=SC1091
-source devel/setup.bash
-set -u
 rm -rf build/test_results
 catkin_make run_tests -j2 > test.log 2>&1 || { tail -n 80 test.log; echo "test: build of the tests failed"; exit 1; }
 grep -E '^\[ *(RUN|  FAILED|  PASSED) *\]|passed|failed|FAILURE|ERROR' test.log | grep -v '^\[ RUN' | tail -n 40 || true

@@ -15,13 +15,7 @@ namespace {
 
 void note(RobotModel* m, Severity sev, const std::string& code, const std::string& element, const std::string& msg,
           int line) {
-  Diagnostic d;
-  d.severity = sev;
-  d.code = code;
-  d.element = element;
-  d.message = msg;
-  d.line = line;
-  m->diagnostics.push_back(std::move(d));
+  m->diagnostics.push_back({sev, code, element, msg, line});
 }
 
 PluginSpec read_plugin(const tinyxml2::XMLElement* p) {

@@ -175,13 +175,7 @@ class Resolver {
   }
 
   void warn(Severity sev, const std::string& code, const std::string& element, const std::string& msg, int line) {
-    Diagnostic d;
-    d.severity = sev;
-    d.code = code;
-    d.element = element;
-    d.message = msg;
-    d.line = line;
-    out_->diagnostics.push_back(std::move(d));
+    out_->diagnostics.push_back({sev, code, element, msg, line});
   }
 
   // Resolves schema keys from params; bad values are load errors naming element and key.

@@ -207,13 +207,7 @@ class Loader {
 
   void add(Severity sev, const std::string& code, const std::string& element, const std::string& msg,
            int line) {
-    Diagnostic d;
-    d.severity = sev;
-    d.code = code;
-    d.element = element;
-    d.message = msg;
-    d.line = line;
-    m_->diagnostics.push_back(std::move(d));
+    m_->diagnostics.push_back({sev, code, element, msg, line});
   }
 
   int line_of(const char* tag, const std::string& name) const {

@@ -227,6 +227,16 @@ Eigen::Isometry3d pose_of(double x, double y, double z, double roll, double pitc
   return T;
 }
 
+// The fields every sensor measurement starts with.
+py::dict measurement(const std::string& robot, const std::string& plugin, uint64_t tick, double dt) {
+  py::dict d;
+  d["robot"] = robot;
+  d["plugin"] = plugin;
+  d["tick"] = tick;
+  d["time"] = static_cast<double>(tick) * dt;
+  return d;
+}
+
 py::dict world_dict(const WorldDescription& d) {
   py::dict out;
   out["name"] = d.name;
@@ -478,11 +488,7 @@ PYBIND11_MODULE(_core, m) {
             py::dict out;
             py::list scans, images, imus;
             for (const auto& s : o.scans) {
-              py::dict d;
-              d["robot"] = s.robot;
-              d["plugin"] = s.plugin;
-              d["tick"] = s.tick;
-              d["time"] = static_cast<double>(s.tick) * w.dt();
+              py::dict d = measurement(s.robot, s.plugin, s.tick, w.dt());
               d["angle_min"] = s.angle_min;
               d["angle_max"] = s.angle_max;
               d["angle_increment"] = s.angle_increment;
@@ -493,11 +499,7 @@ PYBIND11_MODULE(_core, m) {
               scans.append(d);
             }
             for (const auto& c : o.images) {
-              py::dict d;
-              d["robot"] = c.robot;
-              d["plugin"] = c.plugin;
-              d["tick"] = c.tick;
-              d["time"] = static_cast<double>(c.tick) * w.dt();
+              py::dict d = measurement(c.robot, c.plugin, c.tick, w.dt());
               d["width"] = c.width;
               d["height"] = c.height;
               d["f"] = c.f;
@@ -515,10 +517,7 @@ PYBIND11_MODULE(_core, m) {
               images.append(d);
             }
             for (const auto& m : o.imus) {
-              py::dict d;
-              d["robot"] = m.robot;
-              d["plugin"] = m.plugin;
-              d["tick"] = m.tick;
+              py::dict d = measurement(m.robot, m.plugin, m.tick, w.dt());
               d["orientation"] = py::cast(std::vector<double>{m.orientation.x(), m.orientation.y(), m.orientation.z(),
                                                               m.orientation.w()});
               d["angular_velocity"] = vec(m.angular_velocity);
