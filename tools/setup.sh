@@ -44,9 +44,18 @@ if [ "$(cat "$STAMP" 2>/dev/null)" != "$want" ]; then
   echo "$want" > "$STAMP"
 fi
 
-# catkin workspace: .ws/src/car -> this repository.
+# catkin workspace: .ws/src/car holds a link to each top-level entry of this repository (not a link to the
+# repository itself: rosrun and roslaunch search a package's folder following links, and would find .ws inside
+# it again and again). Dot-entries (.ws, .venv, .git) stay out.
 mkdir -p .ws/src
-[ -L .ws/src/car ] || ln -s ../.. .ws/src/car
+[ -L .ws/src/car ] && rm .ws/src/car
+mkdir -p .ws/src/car
+for entry in "$ROOT"/*; do
+  ln -sfn "../../../$(basename "$entry")" ".ws/src/car/$(basename "$entry")"
+done
+for link in .ws/src/car/*; do
+  [ -e "$link" ] || rm -f "$link"
+done
 set +u
 # shellcheck disable=SC1091
 source /opt/ros/noetic/setup.bash 2>/dev/null || true
