@@ -185,6 +185,7 @@ class SimNode {
     publish_sensors(world_->take_sensor_outputs());
     if (tick % period_of(joint_state_rate_) == 0) {
       for (const auto& name : world_->robot_names()) {
+        if (io_[name].joint_states.getNumSubscribers() == 0) continue;
         sensor_msgs::JointState js;
         js.header.stamp = now;
         for (const auto& j : world_->joint_states(name)) {
@@ -195,7 +196,7 @@ class SimNode {
         io_[name].joint_states.publish(js);
       }
     }
-    if (tick % period_of(model_states_rate_) == 0) {
+    if (tick % period_of(model_states_rate_) == 0 && (model_states_pub_.getNumSubscribers() > 0 || ground_truth_listened())) {
       car::ModelStates ms;
       for (const auto& name : world_->model_names()) {
         const car_sim::ModelState s = world_->model_state(name);
@@ -382,6 +383,12 @@ class SimNode {
     }
     pc.is_dense = dense;
     return pc;
+  }
+
+  bool ground_truth_listened() const {
+    for (const auto& [name, io] : io_)
+      if (io.ground_truth.getNumSubscribers() > 0) return true;
+    return false;
   }
 
   void publish_odometry(const car_sim::OdometrySample& o) {
