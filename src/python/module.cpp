@@ -59,6 +59,15 @@ py::dict shape(const Shape& s) {
   return d;
 }
 
+py::object inertial_dict(const std::optional<Inertial>& in) {
+  if (!in) return py::none();
+  py::dict d;
+  d["mass"] = in->mass;
+  d["origin"] = pose(in->origin);
+  d["inertia"] = mat(in->inertia);
+  return d;
+}
+
 py::dict plugin(const PluginSpec& p) {
   py::dict d;
   d["name"] = p.name;
@@ -87,15 +96,7 @@ py::dict model_dict(const RobotModel& m) {
   for (const auto& l : m.links) {
     py::dict ld;
     ld["name"] = l.name;
-    if (l.inertial) {
-      py::dict in;
-      in["mass"] = l.inertial->mass;
-      in["origin"] = pose(l.inertial->origin);
-      in["inertia"] = mat(l.inertial->inertia);
-      ld["inertial"] = in;
-    } else {
-      ld["inertial"] = py::none();
-    }
+    ld["inertial"] = inertial_dict(l.inertial);
     py::list cols, vis;
     for (const auto& c : l.collisions) cols.append(shape(c));
     for (const auto& v : l.visuals) {
@@ -256,15 +257,7 @@ py::dict world_dict(const WorldDescription& d) {
       ld["name"] = l.name;
       ld["pose"] = pose(l.pose);            // in the model frame
       ld["world_pose"] = pose(m.pose * l.pose);
-      if (l.inertial) {
-        py::dict in;
-        in["mass"] = l.inertial->mass;
-        in["origin"] = pose(l.inertial->origin);
-        in["inertia"] = mat(l.inertial->inertia);
-        ld["inertial"] = in;
-      } else {
-        ld["inertial"] = py::none();
-      }
+      ld["inertial"] = inertial_dict(l.inertial);
       py::list cols, vis;
       for (const auto& c : l.collisions) {
         py::dict cd = shape(c.shape);

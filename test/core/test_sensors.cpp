@@ -18,13 +18,6 @@ std::string car_xml(bool noise) {
   return xml;
 }
 
-Eigen::Isometry3d at(double x, double y, double yaw) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.translation() = Eigen::Vector3d(x, y, 0.0);
-  T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  return T;
-}
-
 std::unique_ptr<World> world_with_car(bool noise, double x = 0, double y = 0, double yaw = 0, uint64_t seed = 0) {
   WorldOptions o;
   o.seed = seed;

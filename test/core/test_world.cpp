@@ -16,13 +16,6 @@ const RobotModel& car() {
   return m;
 }
 
-Eigen::Isometry3d at(double x, double y, double yaw) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.translation() = Eigen::Vector3d(x, y, 0.0);
-  T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  return T;
-}
-
 std::unique_ptr<World> box_house_with_car(double x = 0.0, double y = 0.0, double yaw = 0.0) {
   auto w = std::make_unique<World>(load_world_file(std::string(CAR_SOURCE_DIR) + "/worlds/box_house.world"));
   w->spawn(car(), "mycar", at(x, y, yaw));
