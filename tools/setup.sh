@@ -7,13 +7,15 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
 
 DEB_PACKAGES=(
-  build-essential cmake catkin python3-catkin-pkg python3-venv python3-pip python3-dev python3-numpy python3-yaml
+  build-essential cmake pkg-config catkin python3-catkin-pkg python3-venv python3-pip python3-dev python3-numpy python3-yaml
   ros-core-dev ros-base-dev libroscpp-dev python3-rospy python3-roslaunch python3-rostest python3-rosgraph
-  liburdfdom-dev liburdfdom-headers-dev libtinyxml2-dev libeigen3-dev pybind11-dev
+  python3-rospkg python3-roslib
+  liburdfdom-dev liburdfdom-headers-dev libconsole-bridge-dev libtinyxml2-dev libeigen3-dev pybind11-dev
   libbullet-dev libsdformat-dev libembree-dev
   libtf2-ros-dev python3-tf2-ros libsensor-msgs-dev python3-sensor-msgs libnav-msgs-dev python3-nav-msgs
   libgeometry-msgs-dev python3-geometry-msgs libstd-srvs-dev python3-std-srvs libros-rosgraph-msgs-dev python3-rosgraph-msgs
   ros-message-generation ros-message-runtime python3-tf2-msgs libtf2-msgs-dev
+  libvisualization-msgs-dev python3-visualization-msgs
   ros-robot-state-publisher joint-state-publisher rviz rosbash
   googletest python3-pytest
 )

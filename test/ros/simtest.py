@@ -43,16 +43,20 @@ class Recorder:
 
 
 def command(v, w, topic='/cmd_vel'):
-    """A latched cmd_vel publisher that has reached the simulator."""
+    """A latched cmd_vel publisher that has reached the simulator.
+
+    queue_size=None publishes synchronously: publish() returns once the message is in the simulator's socket, so
+    a service call made afterwards (unpause_physics) reaches the simulator's callback queue after it, and the
+    simulator handles every queued callback before its next step. The command therefore holds from the first
+    step, however busy the machine is."""
     import time
-    pub = rospy.Publisher(topic, Twist, queue_size=1, latch=True)
+    pub = rospy.Publisher(topic, Twist, queue_size=None, latch=True)
     msg = Twist()
     msg.linear.x, msg.angular.z = v, w
     deadline = time.time() + 30
     while pub.get_num_connections() == 0 and time.time() < deadline:
         time.sleep(0.05)
     pub.publish(msg)
-    time.sleep(0.2)  # let the message cross before physics runs
     return pub
 
 
