@@ -11,7 +11,9 @@
 #include <sstream>
 #include <string>
 
+#include "camera/camera.hpp"
 #include "car_sim/world.hpp"
+#include "laser/laser.hpp"
 
 using clk = std::chrono::steady_clock;
 
@@ -23,17 +25,17 @@ static std::string replace(std::string s, const std::string& from, const std::st
 }
 
 static double run(const std::string& urdf_xml, const std::string& world, double seconds,
-                  std::initializer_list<const char*> active, car_sim::SensorOutputs* out) {
+                  std::initializer_list<const char*> active, car_sim::OutputQueue* out) {
   car_sim::World w(car_sim::load_world_file(world));
   w.spawn(car_sim::load_urdf_string(urdf_xml, "car"), "mycar", Eigen::Isometry3d::Identity());
   w.set_cmd_vel("mycar", 1.0, 1.0);
   for (const char* p : active) w.set_sensor_active("mycar", p, true);
   w.step(3000);
-  w.take_sensor_outputs();
+  w.take_outputs();
   const auto t0 = clk::now();
   w.step(static_cast<uint64_t>(seconds / w.dt()));
   const double s = std::chrono::duration<double>(clk::now() - t0).count();
-  *out = w.take_sensor_outputs();
+  *out = w.take_outputs();
   return s;
 }
 
@@ -56,12 +58,21 @@ int main(int argc, char** argv) {
   // the full stack: depth at 10 Hz
   const std::string full10 = replace(replace(seed, "<update_rate>20.0</update_rate>", "<update_rate>10</update_rate>"),
                                      "<update_rate>20.0</update_rate>", "<update_rate>10</update_rate>");
-  car_sim::SensorOutputs o;
+  car_sim::OutputQueue o;
+  // outputs of one type among a run's outputs
+  auto of = [&o](auto* type) {
+    using Out = std::remove_pointer_t<decltype(type)>;
+    std::vector<const Out*> v;
+    for (const auto& x : o)
+      if (auto* p = dynamic_cast<const Out*>(x.get())) v.push_back(p);
+    return v;
+  };
   const double physics = run(seed, argv[2], T, {}, &o);
   const double lidar = run(wide, argv[2], T, {"gazebo_rplidar"}, &o);
-  const size_t scans = o.scans.size(), rays = scans * (scans ? o.scans[0].ranges.size() : 0);
+  const auto scan_list = of(static_cast<car_sim::LaserScanOut*>(nullptr));
+  const size_t scans = scan_list.size(), rays = scans * (scans ? scan_list[0]->ranges.size() : 0);
   const double depth = run(seed, argv[2], T, {"kinect_camera_controller"}, &o);
-  const size_t frames = o.images.size();
+  const size_t frames = of(static_cast<car_sim::CameraOut*>(nullptr)).size();
   const double full = run(full10, argv[2], T, {"gazebo_rplidar", "kinect_camera_controller"}, &o);
   std::printf("threads %d\n", omp_get_max_threads());
   std::printf("physics alone: %.1fx real time\n", T / physics);

@@ -1,5 +1,6 @@
-// Plug-in and sensor configuration: every key the simulator reads, with its default and unit, resolved from
-// the URDF's <gazebo> blocks per gazebo_ros (Noetic) behaviour. No ROS headers.
+// Plug-in configuration: every key a plug-in kind reads, with its default and unit, resolved from the model's
+// <gazebo> blocks per gazebo_ros (Noetic) behaviour. The schemas live with their kinds (src/plugins/<kind>/);
+// this header is what the loader, the model check and the skins see. No ROS headers.
 #pragma once
 
 #include <string>
@@ -9,7 +10,9 @@
 
 namespace car_sim {
 
-enum class ParamType { Text, Number, Integer, Flag };
+// Text: as written. Frame: text with leading '/' removed (tf2 frame names). Number: a finite decimal.
+// Integer: a whole number. Flag: true/false/1/0 in any case, stored as "true"/"false".
+enum class ParamType { Text, Frame, Number, Integer, Flag };
 
 // One key of a plug-in's schema.
 struct ParamDef {
@@ -29,15 +32,17 @@ struct ResolvedParam {
 
 // One configured plug-in, robot-level or inside a sensor, with every schema key resolved.
 struct PluginConfig {
-  std::string kind;        // "diff_drive", "laser", "openni_kinect", "camera", "imu"
+  std::string kind;        // the kind's registry name, e.g. "diff_drive", "laser"
   std::string name;        // <plugin name>
   std::string filename;    // <plugin filename>
   std::string sensor;      // sensor name, "" for robot-level plug-ins
   std::string sensor_type; // sensor type, "" for robot-level plug-ins
-  std::string link;        // sensor's link, or the imu body
+  std::string link;        // the link it measures or acts on ("" when the whole model)
+  Eigen::Isometry3d sensor_pose = Eigen::Isometry3d::Identity();  // sensor frame in the link frame
   std::vector<ResolvedParam> params;
 
   const ResolvedParam& param(const std::string& key) const;  // throws std::out_of_range
+  bool has(const std::string& key) const;
   const std::string& text(const std::string& key) const;
   double number(const std::string& key) const;
   bool flag(const std::string& key) const;
@@ -51,9 +56,12 @@ struct ModelConfig {
 // Parses "true/false/1/0" in any case. Returns false when the text is none of those.
 bool parse_flag(const std::string& text, bool* value);
 
-// Resolves every plug-in of a model. Throws LoadError naming the plug-in (or sensor) and key for bad values:
-// a missing wheel joint, zero samples, min_angle > max_angle, near >= far, an unknown image format, ...
+// Resolves every plug-in of a model through the registry. Throws LoadError naming the plug-in (or sensor) and key
+// for bad values: a missing wheel joint, zero samples, min_angle > max_angle, near >= far, an unknown image
+// format, ...
 ModelConfig resolve_plugins(const RobotModel& model);
+// Resolves one robot-level plug-in (e.g. one the ROS node attaches); throws LoadError like resolve_plugins.
+PluginConfig resolve_plugin(const RobotModel& model, const PluginSpec& spec, std::vector<Diagnostic>* diagnostics);
 
 // The schema of a plug-in kind (sensor keys first, then the plug-in's own). Empty for unknown kinds.
 const std::vector<ParamDef>& plugin_schema(const std::string& kind);

@@ -1,137 +1,47 @@
-// The simulated world: an SDF world description (const), robots spawned into it, and a Bullet dynamics
-// world stepped in integer ticks of a fixed step. No ROS headers; nothing here reads a clock or sleeps.
+// The simulated world: an SDF world description (const), robots spawned into it with their plug-ins, and a
+// Bullet dynamics world stepped in integer ticks of a fixed step. No ROS headers; nothing here reads a clock or
+// sleeps. A step has phases: every plug-in's pre_physics, one physics step, then every plug-in's track and (when
+// its schedule is due) post_physics.
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
-#include "car_sim/diff_drive.hpp"
+#include "car_sim/description.hpp"
+#include "car_sim/drive.hpp"
 #include "car_sim/model.hpp"
+#include "car_sim/plugin.hpp"
 #include "car_sim/plugins.hpp"
-#include "car_sim/sensors.hpp"
+#include "car_sim/state.hpp"
 
 namespace car_sim {
-
-// ---- world description (from SDF) -------------------------------------------------------------------
-
-struct SurfaceFriction {
-  double mu = 1.0;   // [-] Gazebo's default when a surface sets nothing
-  double mu2 = 1.0;  // [-] kept for listing; Bullet uses one isotropic coefficient (mu)
-};
-
-struct WorldCollision {
-  std::string name;
-  Shape shape;  // shape.origin: collision frame in the link frame
-  SurfaceFriction friction;
-};
-
-struct WorldVisual {
-  std::string name;
-  Shape shape;                // shape.origin: visual frame in the link frame
-  Material material;          // rgba from <diffuse> (else <ambient>) when given
-  std::string script_name;    // e.g. "Gazebo/Bricks", "" when none
-  Eigen::Vector4d ambient = Eigen::Vector4d::Zero();
-  bool has_ambient = false;
-};
-
-struct WorldLink {
-  std::string name;
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // link frame in the model frame
-  std::optional<Inertial> inertial;
-  std::vector<WorldCollision> collisions;
-  std::vector<WorldVisual> visuals;
-};
-
-struct WorldModelDesc {
-  std::string name;
-  bool is_static = false;
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // model frame in the world, after <state>
-  std::vector<WorldLink> links;
-};
-
-struct WorldDescription {
-  std::string name = "default";
-  std::string source;                                    // file name or "<string>"
-  Eigen::Vector3d gravity = Eigen::Vector3d(0, 0, -9.8);  // [m/s^2], world frame
-  double step_size = 0.001;                              // [s] <max_step_size>
-  double real_time_factor = 1.0;                         // <real_time_factor>, a pacing hint for the node
-  Eigen::Vector3d sun_direction = Eigen::Vector3d(-0.5, 0.1, -0.9).normalized();  // light travels along it
-  double ambient = 0.4;                                                          // <scene><ambient> (grey level)
-  Eigen::Vector3d background = Eigen::Vector3d(0.7, 0.7, 0.7);                  // <scene><background>
-  std::vector<WorldModelDesc> models;
-  std::vector<Diagnostic> diagnostics;
-
-  const WorldModelDesc* find_model(const std::string& name) const;
-};
-
-// Loads an SDF world (SDF 1.4-1.9 through sdformat). Throws LoadError naming file, element and reason.
-WorldDescription load_world_file(const std::string& path);
-WorldDescription load_world_string(const std::string& xml, const std::string& source_name = "<string>");
-// The include rule (the same as python/car/world_tools.py): model://NAME through GAZEBO_MODEL_PATH, then car's
-// models/ folder; package://PKG through ROS_PACKAGE_PATH; file:// and plain paths as they are. "" when not found.
-std::vector<std::string> model_path();
-std::string resolve_uri(const std::string& uri);
-std::string resolve_uri(const std::string& uri, const std::string& base_dir);  // relative paths against base_dir
-
-// Gazebo's empty world: a ground plane (mu 100, mu2 50) and a sun, 1 ms step.
-WorldDescription empty_world();
-
-// ---- runtime ------------------------------------------------------------------------------------------
 
 struct WorldOptions {
   int solver_iterations = 10;        // at most this many sequential-impulse iterations per step
   double residual_threshold = 1e-9;  // [(m/s)^2] converged: stop iterating early
-  uint64_t seed = 0;                 // sensor noise: each sensor's generator is seeded from (seed, robot/sensor)
+  uint64_t seed = 0;                 // noise: each plug-in's generator is seeded from (seed, robot/plug-in)
 };
 
-// Pose and twist of a model's root frame, world frame.
-struct ModelState {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  Eigen::Vector3d linear = Eigen::Vector3d::Zero();   // [m/s], world frame
-  Eigen::Vector3d angular = Eigen::Vector3d::Zero();  // [rad/s], world frame
-};
-
-struct JointState {
-  std::string name;
-  double position = 0.0;  // [rad] or [m]
-  double velocity = 0.0;  // [rad/s] or [m/s]
-};
-
-// One odometry message of a diff-drive plug-in, produced at its update rate.
-struct OdometrySample {
-  std::string model;
-  size_t drive = 0;         // index into RobotInfo::drives
-  uint64_t tick = 0;
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // base frame in the odometry frame
-  Eigen::Vector3d linear = Eigen::Vector3d::Zero();        // [m/s], base frame
-  Eigen::Vector3d angular = Eigen::Vector3d::Zero();       // [rad/s], base frame (z only for encoder)
-  JointState left, right;   // the wheel joints at that time
-};
-
-// A contact between two bodies during the last step.
-struct Contact {
-  std::string a, b;          // "model/link" (robots: the body's top link)
-  Eigen::Vector3d position;  // [m], world frame, on b
-  double normal_force = 0.0; // [N]
-};
-
-// A sensor of a spawned robot, for the ROS skin.
-struct SensorInfo {
+// One plug-in instance of a spawned robot, for the skins.
+struct PluginInfo {
   std::string robot;
-  PluginConfig config;   // kind, names, every resolved key
-  std::string link;      // the link it is on
-  double rate = 0.0;     // [Hz], 0 = every step
+  PluginConfig config;          // kind, names, every resolved key
+  const PluginKind* kind = nullptr;
+  std::string link;             // the link it is on or measures ("" for the whole model)
+  double rate = 0.0;            // [Hz], 0 = every step
+  bool lazy = false;            // computed only while active (someone listens)
 };
+using SensorInfo = PluginInfo;
 
-// What a spawned robot is, for the ROS skin: its model, resolved plug-ins and namespace.
+// What a spawned robot is, for the skins: its model, resolved plug-ins and namespace.
 struct RobotInfo {
   std::string name;
   std::string robot_namespace;  // as given at spawn ("" when none)
   RobotModel model;
   ModelConfig config;
-  std::vector<DiffDriveConfig> drives;  // resolved namespaces
   Eigen::Isometry3d spawn_pose = Eigen::Isometry3d::Identity();
 };
 
@@ -147,14 +57,17 @@ class World {
   uint64_t tick() const { return tick_; }
   double time() const { return static_cast<double>(tick_) * desc_.step_size; }  // [s]
 
-  // Adds a robot. Throws std::invalid_argument when the name exists, LoadError for a bad model.
+  // Adds a robot with its plug-ins. Throws std::invalid_argument when the name exists, LoadError for a bad model.
   // A non-empty robot_namespace overrides every plug-in's <robotNamespace>, as gazebo_ros does.
   void spawn(const RobotModel& model, const std::string& name, const Eigen::Isometry3d& pose,
              const std::string& robot_namespace = "");
+  // Adds a robot-level plug-in to a spawned robot (e.g. the ground-truth publisher the ROS node attaches).
+  // Throws LoadError for a bad plug-in, std::invalid_argument for an unknown robot or a taken plug-in name.
+  void attach_plugin(const std::string& robot, const PluginSpec& spec);
   // Removes a robot or world model. Throws std::invalid_argument when there is none of that name.
   void remove(const std::string& name);
 
-  // Advances n fixed steps: plug-ins apply commands, physics, then plug-ins sample outputs.
+  // Advances n fixed steps.
   void step(uint64_t n = 1);
   // Time to zero, every model back to where it started, plug-ins reset (reset_simulation).
   void reset();
@@ -173,28 +86,45 @@ class World {
   // Pose of a robot link in the world (fixed-joint children included).
   Eigen::Isometry3d link_pose(const std::string& robot, const std::string& link) const;
 
-  // Commands the robot's diff drive(s): v [m/s] forward, w [rad/s] about z. Non-finite values throw.
-  void set_cmd_vel(const std::string& robot, double v, double w);
+  // Every plug-in instance of every robot, in spawn order; lazy ones compute only while active.
+  std::vector<PluginInfo> plugins() const;
+  // The lazy ones (measurements): what Python's sensors() lists.
+  std::vector<PluginInfo> sensors() const;
+  void set_plugin_active(const std::string& robot, const std::string& plugin, bool active);
+  void set_sensor_active(const std::string& robot, const std::string& plugin, bool active) {
+    set_plugin_active(robot, plugin, active);
+  }
+  // A robot's plug-in instance (for a skin to command it, e.g. through TwistDrive); nullptr when none.
+  Plugin* plugin(const std::string& robot, const std::string& name);
 
-  // Sensors: every sensor plug-in of every robot. A sensor computes only while active (someone listens).
-  std::vector<SensorInfo> sensors() const;
-  void set_sensor_active(const std::string& robot, const std::string& plugin, bool active);
-  // Measurements made since the last call.
-  SensorOutputs take_sensor_outputs();
+  // Every output produced since the last call, in instance order.
+  OutputQueue take_outputs();
+  // The outputs of one type only (others stay queued), moved out.
+  template <class T>
+  std::vector<T> take_outputs() {
+    std::vector<T> out;
+    for (OutputPtr& o : take_outputs_if([](const Output& x) { return dynamic_cast<const T*>(&x) != nullptr; }))
+      out.push_back(std::move(static_cast<T&>(*o)));
+    return out;
+  }
+  OutputQueue take_outputs_if(const std::function<bool(const Output&)>& pick);
+
+  // Commands every drive plug-in of the robot (TwistDrive): v [m/s] forward, w [rad/s] about z. Non-finite
+  // values and unknown robots throw std::invalid_argument; a robot without a drive ignores the command.
+  void set_cmd_vel(const std::string& robot, double v, double w);
+  void set_cmd_vel(const std::string& robot, const Twist& cmd);
+  // Odometry produced since the last call (the drive plug-ins' outputs).
+  std::vector<OdometryOut> take_odometry() { return take_outputs<OdometryOut>(); }
 
   // Contacts of the last step with a positive normal force.
   std::vector<Contact> contacts() const;
 
-  // Odometry produced since the last call.
-  std::vector<OdometrySample> take_odometry();
-
  private:
-  void update_sensors();
-
   struct Impl;
-  WorldDescription desc_;
+  const WorldDescription desc_;
   WorldOptions options_;
   uint64_t tick_ = 0;
+  std::set<std::string> removed_;  // world models deleted at run time (a reset does not bring them back)
   std::unique_ptr<Impl> impl_;
 };
 

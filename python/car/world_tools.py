@@ -15,8 +15,6 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 
-PACKAGE_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-CAR_MODELS = os.path.join(PACKAGE_ROOT, 'models')
 KNOWN_GEOMETRY = {'box', 'cylinder', 'sphere', 'plane', 'mesh', 'capsule', 'ellipsoid', 'heightmap', 'image',
                   'polyline', 'empty'}
 SIMULATED_GEOMETRY = {'box', 'cylinder', 'sphere', 'plane'}
@@ -33,41 +31,16 @@ class WorldError(Exception):
 # ---- URIs and model folders ---------------------------------------------------------------------------
 
 def model_path() -> list:
-    """Where model:// looks, in order."""
-    env = [p for p in os.environ.get('GAZEBO_MODEL_PATH', '').split(':') if p]
-    return env + [CAR_MODELS]
-
-
-def _ros_package(name: str) -> str | None:
-    for entry in [p for p in os.environ.get('ROS_PACKAGE_PATH', '').split(':') if p] + [PACKAGE_ROOT]:
-        for cand in (entry, os.path.join(entry, name)):
-            pkg_xml = os.path.join(cand, 'package.xml')
-            if os.path.isfile(pkg_xml):
-                try:
-                    if ET.parse(pkg_xml).getroot().findtext('name', '').strip() == name:
-                        return cand
-                except ET.ParseError:
-                    continue
-    return None
+    """Where model:// looks, in order (the core's rule: GAZEBO_MODEL_PATH, then car's models/)."""
+    from car import _core
+    return _core.model_path()
 
 
 def resolve_uri(uri: str, base_dir: str) -> str | None:
-    """A file or folder for a URI, or None when nothing matches."""
-    uri = uri.strip()
-    if uri.startswith('model://'):
-        name, _, rest = uri[len('model://'):].partition('/')
-        for d in model_path():
-            cand = os.path.join(d, name)
-            if os.path.isdir(cand):
-                return os.path.join(cand, rest) if rest else cand
-        return None
-    if uri.startswith('package://'):
-        pkg, _, rest = uri[len('package://'):].partition('/')
-        root = _ros_package(pkg)
-        return os.path.join(root, rest) if root else None
-    path = uri[len('file://'):] if uri.startswith('file://') else uri
-    path = path if os.path.isabs(path) else os.path.normpath(os.path.join(base_dir, path))
-    return path if os.path.exists(path) else None
+    """A file or folder for a URI, or None when nothing matches: the core's rule (car_sim::resolve_uri), so the
+    world tools and the simulator resolve every URI the same way."""
+    from car import _core
+    return _core.resolve_uri(uri, base_dir) or None
 
 
 def model_sdf_file(folder: str) -> str:

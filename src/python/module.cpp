@@ -5,8 +5,10 @@
 #include <pybind11/stl.h>
 
 #include "car_sim/model.hpp"
+#include "car_sim/plugin.hpp"
 #include "car_sim/plugins.hpp"
 #include "car_sim/world.hpp"
+#include "materials.hpp"
 
 namespace py = pybind11;
 using namespace car_sim;
@@ -228,13 +230,47 @@ Eigen::Isometry3d pose_of(double x, double y, double z, double roll, double pitc
   return T;
 }
 
-// The fields every sensor measurement starts with.
-py::dict measurement(const std::string& robot, const std::string& plugin, uint64_t tick, double dt) {
+// An output's fields as a dict: numbers and text as Python scalars, short vectors as lists, bulk data as NumPy
+// arrays (copied), after the fields every output starts with (robot, plugin, tick, time).
+class DictVisitor : public FieldVisitor {
+ public:
+  DictVisitor(const Output& o, double dt) {
+    d["robot"] = o.robot;
+    d["plugin"] = o.plugin;
+    d["tick"] = o.tick;
+    d["time"] = static_cast<double>(o.tick) * dt;
+  }
+  void number(const char* k, double v) override { d[k] = v; }
+  void integer(const char* k, int64_t v) override { d[k] = v; }
+  void text(const char* k, const std::string& v) override { d[k] = v; }
+  void vector(const char* k, const double* v, size_t n) override { d[k] = py::cast(std::vector<double>(v, v + n)); }
+  void array(const char* k, const float* data, const std::vector<size_t>& shape) override { d[k] = make(data, shape); }
+  void array(const char* k, const uint8_t* data, const std::vector<size_t>& shape) override { d[k] = make(data, shape); }
   py::dict d;
-  d["robot"] = robot;
-  d["plugin"] = plugin;
-  d["tick"] = tick;
-  d["time"] = static_cast<double>(tick) * dt;
+
+ private:
+  template <class T>
+  static py::array_t<T> make(const T* data, const std::vector<size_t>& shape) {
+    std::vector<ssize_t> s(shape.begin(), shape.end());
+    return py::array_t<T>(s, data);
+  }
+};
+
+py::dict output_dict(const Output& o, double dt) {
+  DictVisitor v(o, dt);
+  o.visit(v);
+  return v.d;
+}
+
+py::dict plugin_info_dict(const PluginInfo& s) {
+  py::dict d;
+  d["robot"] = s.robot;
+  d["plugin"] = s.config.name;
+  d["sensor"] = s.config.sensor;
+  d["kind"] = s.config.kind;
+  d["link"] = s.link;
+  d["rate"] = s.rate;
+  d["lazy"] = s.lazy;
   return d;
 }
 
@@ -399,8 +435,8 @@ PYBIND11_MODULE(_core, m) {
            "Advance n fixed steps (releases the GIL).")
       .def("reset", &World::reset, "Time to zero, every model where it started (reset_simulation).")
       .def("reset_poses", &World::reset_poses, "Every model where it started, time goes on (reset_world).")
-      .def("set_cmd_vel", &World::set_cmd_vel, py::arg("robot"), py::arg("v"), py::arg("w"),
-           "Command the robot's diff drive: v [m/s], w [rad/s].")
+      .def("set_cmd_vel", py::overload_cast<const std::string&, double, double>(&World::set_cmd_vel), py::arg("robot"),
+           py::arg("v"), py::arg("w"), "Command the robot's drive plug-ins: v [m/s] forward, w [rad/s] about z.")
       .def("model_names", &World::model_names)
       .def("robot_names", &World::robot_names)
       .def("model_state", [](const World& w, const std::string& n) { return state_dict(w.model_state(n)); },
@@ -459,86 +495,87 @@ PYBIND11_MODULE(_core, m) {
           "sensors",
           [](const World& w) {
             py::list out;
-            for (const auto& s : w.sensors()) {
-              py::dict d;
-              d["robot"] = s.robot;
-              d["plugin"] = s.config.name;
-              d["sensor"] = s.config.sensor;
-              d["kind"] = s.config.kind;
-              d["link"] = s.link;
-              d["rate"] = s.rate;
-              out.append(d);
-            }
+            for (const auto& s : w.sensors()) out.append(plugin_info_dict(s));
             return out;
           },
-          "Every sensor plug-in of every robot.")
+          "Every measuring plug-in (computed only while active) of every robot.")
+      .def(
+          "plugins",
+          [](const World& w) {
+            py::list out;
+            for (const auto& s : w.plugins()) out.append(plugin_info_dict(s));
+            return out;
+          },
+          "Every plug-in instance of every robot, in spawn order.")
       .def("set_sensor_active", &World::set_sensor_active, py::arg("robot"), py::arg("plugin"), py::arg("active") = true,
            "A sensor computes only while active.")
       .def(
           "take_sensor_outputs",
           [](World& w) {
-            const SensorOutputs o = w.take_sensor_outputs();
+            // one list per output group of the measuring kinds ("scans", "images", "imus", ...)
             py::dict out;
-            py::list scans, images, imus;
-            for (const auto& s : o.scans) {
-              py::dict d = measurement(s.robot, s.plugin, s.tick, w.dt());
-              d["angle_min"] = s.angle_min;
-              d["angle_max"] = s.angle_max;
-              d["angle_increment"] = s.angle_increment;
-              d["range_min"] = s.range_min;
-              d["range_max"] = s.range_max;
-              d["ranges"] = py::array_t<float>(std::vector<ssize_t>{ssize_t(s.ranges.size())}, s.ranges.data());
-              d["intensities"] = py::array_t<float>(std::vector<ssize_t>{ssize_t(s.intensities.size())}, s.intensities.data());
-              scans.append(d);
+            std::map<std::pair<std::string, std::string>, std::string> group;
+            for (const PluginKind* k : plugin_kinds())
+              if (k->lazy && !k->output_group.empty() && !out.contains(k->output_group.c_str()))
+                out[k->output_group.c_str()] = py::list();
+            for (const auto& s : w.sensors()) group[{s.robot, s.config.name}] = s.kind->output_group;
+            const OutputQueue taken = w.take_outputs_if([&](const Output& o) { return group.count({o.robot, o.plugin}) > 0; });
+            for (const auto& o : taken) {
+              const std::string& g = group.at({o->robot, o->plugin});
+              if (!out.contains(g.c_str())) out[g.c_str()] = py::list();
+              out[g.c_str()].cast<py::list>().append(output_dict(*o, w.dt()));
             }
-            for (const auto& c : o.images) {
-              py::dict d = measurement(c.robot, c.plugin, c.tick, w.dt());
-              d["width"] = c.width;
-              d["height"] = c.height;
-              d["f"] = c.f;
-              d["cx"] = c.cx;
-              d["cy"] = c.cy;
-              d["encoding"] = c.encoding;
-              const ssize_t ch = c.encoding == "mono8" ? 1 : 3;
-              d["image"] = py::array_t<uint8_t>({ssize_t(c.height), ssize_t(c.width), ch}, c.image.data());
-              if (c.has_depth) {
-                d["depth"] = py::array_t<float>({ssize_t(c.height), ssize_t(c.width)}, c.depth.data());
-                d["points"] = py::array_t<float>({ssize_t(c.height), ssize_t(c.width), ssize_t(3)}, c.points.data());
-                d["point_rgb"] =
-                    py::array_t<uint8_t>({ssize_t(c.height), ssize_t(c.width), ssize_t(3)}, c.point_rgb.data());
-              }
-              images.append(d);
-            }
-            for (const auto& m : o.imus) {
-              py::dict d = measurement(m.robot, m.plugin, m.tick, w.dt());
-              d["orientation"] = py::cast(std::vector<double>{m.orientation.x(), m.orientation.y(), m.orientation.z(),
-                                                              m.orientation.w()});
-              d["angular_velocity"] = vec(m.angular_velocity);
-              d["linear_acceleration"] = vec(m.linear_acceleration);
-              imus.append(d);
-            }
-            out["scans"] = scans;
-            out["images"] = images;
-            out["imus"] = imus;
             return out;
           },
-          "Sensor measurements since the last call: {'scans', 'images', 'imus'}, arrays as NumPy.")
+          "Measurements since the last call, by group: {'scans', 'images', 'imus', ...}, arrays as NumPy.")
       .def(
           "take_odometry",
           [](World& w) {
             py::list out;
             for (const auto& o : w.take_odometry()) {
-              ModelState s;
-              s.pose = o.pose;
-              s.linear = o.linear;
-              s.angular = o.angular;
-              py::dict d = state_dict(s);
-              d["model"] = o.model;
-              d["tick"] = o.tick;
-              d["time"] = static_cast<double>(o.tick) * w.dt();
+              py::dict d = output_dict(o, w.dt());
+              d["model"] = o.robot;
               out.append(d);
             }
             return out;
           },
-          "Odometry samples produced since the last call (base twist in the base frame).");
+          "Odometry samples of the drive plug-ins since the last call (base twist in the base frame).");
+
+  m.def(
+      "gazebo_colours", [] { 
+        py::dict d;
+        for (const auto& [name, c] : gazebo_colours()) d[name.c_str()] = py::make_tuple(c[0], c[1], c[2], c[3]);
+        return d;
+      },
+      "Gazebo's standard materials as RGBA (config/gazebo_materials.txt).");
+  m.def(
+      "visual_colour",
+      [](const std::string& script, const std::optional<std::vector<double>>& diffuse,
+         const std::optional<std::vector<double>>& ambient) {
+        auto v4 = [](const std::optional<std::vector<double>>& v) -> std::optional<Eigen::Vector4d> {
+          if (!v) return std::nullopt;
+          if (v->size() != 4) throw std::invalid_argument("a colour needs 4 values (r g b a)");
+          return Eigen::Vector4d((*v)[0], (*v)[1], (*v)[2], (*v)[3]);
+        };
+        const Eigen::Vector4d c = visual_colour(script, v4(diffuse), v4(ambient));
+        return py::make_tuple(c[0], c[1], c[2], c[3]);
+      },
+      py::arg("script") = "", py::arg("diffuse") = py::none(), py::arg("ambient") = py::none(),
+      "The colour rule for an SDF visual: a known Gazebo/Name script, else diffuse, else ambient, else grey.");
+  m.def(
+      "plugin_kinds",
+      [] {
+        py::list out;
+        for (const PluginKind* k : plugin_kinds()) {
+          py::dict d;
+          d["name"] = k->name;
+          d["filenames"] = k->filenames;
+          d["sensor_types"] = k->sensor_types;
+          d["model_level"] = k->model_level;
+          d["lazy"] = k->lazy;
+          out.append(d);
+        }
+        return out;
+      },
+      "Every plug-in kind of the registry: name, Gazebo file names, sensor types.");
 }

@@ -1,9 +1,10 @@
-// libgazebo_ros_diff_drive.so: configuration and the plain maths of the controller (no physics, no ROS).
+// libgazebo_ros_diff_drive.so: configuration, the plain maths of the controller, and the plug-in kind.
 #pragma once
 
 #include <string>
 
-#include "car_sim/plugins.hpp"
+#include "car_sim/drive.hpp"
+#include "car_sim/plugin.hpp"
 
 namespace car_sim {
 
@@ -46,5 +47,7 @@ struct EncoderOdometry {
   // sl, sr: wheel travel [m] during dt [s]. Keeps the sign of v when reversing (fix of upstream's |v|).
   void integrate(double sl, double sr, double separation, double dt);
 };
+
+const PluginKind& diff_drive_kind();
 
 }  // namespace car_sim

@@ -4,11 +4,13 @@
 #include <sdf/Scene.hh>
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <sys/stat.h>
 
-#include "car_sim/world.hpp"
+#include "car_sim/description.hpp"
+#include "xml_util.hpp"
 
 namespace car_sim {
 
@@ -80,7 +82,9 @@ std::vector<std::string> split_path(const char* env) {
 }
 
 std::string package_named(const std::string& name) {
-  for (const auto& entry : split_path(std::getenv("ROS_PACKAGE_PATH"))) {
+  std::vector<std::string> roots = split_path(std::getenv("ROS_PACKAGE_PATH"));
+  roots.push_back(CAR_PACKAGE_DIR);  // car itself, also where no ROS environment is set up
+  for (const auto& entry : roots) {
     for (const std::string& cand : {entry, entry + "/" + name}) {
       std::ifstream in(cand + "/package.xml");
       if (!in) continue;
@@ -253,7 +257,8 @@ std::vector<std::string> model_path() {
 
 std::string resolve_uri(const std::string& uri) { return resolve_uri(uri, ""); }
 
-std::string resolve_uri(const std::string& uri, const std::string& base_dir) {
+std::string resolve_uri(const std::string& uri_text, const std::string& base_dir) {
+  const std::string uri = detail::trim(uri_text);
   if (uri.rfind("model://", 0) == 0) {
     const std::string rest = uri.substr(8);
     const std::string name = rest.substr(0, rest.find('/'));
@@ -269,7 +274,8 @@ std::string resolve_uri(const std::string& uri, const std::string& base_dir) {
     return root.empty() ? "" : root + rest.substr(pkg.size());
   }
   std::string path = uri.rfind("file://", 0) == 0 ? uri.substr(7) : uri;
-  if (!path.empty() && path[0] != '/' && !base_dir.empty()) path = base_dir + "/" + path;
+  if (!path.empty() && path[0] != '/' && !base_dir.empty())
+    path = std::filesystem::path(base_dir + "/" + path).lexically_normal().string();
   return exists(path) ? path : "";
 }
 

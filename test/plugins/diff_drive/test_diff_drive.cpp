@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "car_sim/diff_drive.hpp"
+#include "diff_drive/diff_drive.hpp"
 
 using namespace car_sim;
 

@@ -1,0 +1,76 @@
+// The world description of the car_sim core: an SDF world as read through sdformat (models, links, shapes,
+// surfaces, materials, light, gravity, step size), fixed after loading, and the URI rule for includes and meshes.
+// No ROS headers.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "car_sim/model.hpp"
+
+namespace car_sim {
+
+struct SurfaceFriction {
+  double mu = 1.0;   // [-] Gazebo's default when a surface sets nothing
+  double mu2 = 1.0;  // [-] kept for listing; Bullet uses one isotropic coefficient (mu)
+};
+
+struct WorldCollision {
+  std::string name;
+  Shape shape;  // shape.origin: collision frame in the link frame
+  SurfaceFriction friction;
+};
+
+struct WorldVisual {
+  std::string name;
+  Shape shape;                // shape.origin: visual frame in the link frame
+  Material material;          // rgba from <diffuse> (else <ambient>) when given
+  std::string script_name;    // e.g. "Gazebo/Bricks", "" when none
+  Eigen::Vector4d ambient = Eigen::Vector4d::Zero();
+  bool has_ambient = false;
+};
+
+struct WorldLink {
+  std::string name;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // link frame in the model frame
+  std::optional<Inertial> inertial;
+  std::vector<WorldCollision> collisions;
+  std::vector<WorldVisual> visuals;
+};
+
+struct WorldModelDesc {
+  std::string name;
+  bool is_static = false;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // model frame in the world, after <state>
+  std::vector<WorldLink> links;
+};
+
+struct WorldDescription {
+  std::string name = "default";
+  std::string source;                                    // file name or "<string>"
+  Eigen::Vector3d gravity = Eigen::Vector3d(0, 0, -9.8);  // [m/s^2], world frame
+  double step_size = 0.001;                              // [s] <max_step_size>
+  double real_time_factor = 1.0;                         // <real_time_factor>, a pacing hint for the node
+  Eigen::Vector3d sun_direction = Eigen::Vector3d(-0.5, 0.1, -0.9).normalized();  // light travels along it
+  double ambient = 0.4;                                                          // <scene><ambient> (grey level)
+  Eigen::Vector3d background = Eigen::Vector3d(0.7, 0.7, 0.7);                  // <scene><background>
+  std::vector<WorldModelDesc> models;
+  std::vector<Diagnostic> diagnostics;
+
+  const WorldModelDesc* find_model(const std::string& name) const;
+};
+
+// Loads an SDF world (SDF 1.4-1.9 through sdformat). Throws LoadError naming file, element and reason.
+WorldDescription load_world_file(const std::string& path);
+WorldDescription load_world_string(const std::string& xml, const std::string& source_name = "<string>");
+// The include rule (the same as python/car/world_tools.py): model://NAME through GAZEBO_MODEL_PATH, then car's
+// models/ folder; package://PKG through ROS_PACKAGE_PATH; file:// and plain paths as they are. "" when not found.
+std::vector<std::string> model_path();
+std::string resolve_uri(const std::string& uri);
+std::string resolve_uri(const std::string& uri, const std::string& base_dir);  // relative paths against base_dir
+
+// Gazebo's empty world: a ground plane (mu 100, mu2 50) and a sun, 1 ms step.
+WorldDescription empty_world();
+
+}  // namespace car_sim

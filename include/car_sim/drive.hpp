@@ -1,0 +1,36 @@
+// What every base-drive plug-in kind shares (diff drive, skid steer, planar move, tricycle): it takes a body
+// twist command and reports odometry. The world routes set_cmd_vel and take_odometry through these, so neither
+// the world nor its skins name a kind. No ROS headers.
+#pragma once
+
+#include <Eigen/Geometry>
+
+#include "car_sim/plugin.hpp"
+#include "car_sim/state.hpp"
+
+namespace car_sim {
+
+// A body twist command: linear [m/s] and angular [rad/s], in the robot's base frame.
+struct Twist {
+  Eigen::Vector3d linear = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular = Eigen::Vector3d::Zero();
+};
+
+// A plug-in that drives the robot's base from a twist command (cmd_vel).
+class TwistDrive {
+ public:
+  virtual ~TwistDrive() = default;
+  // Takes effect at the plug-in's next update; holds until the next command (no timeout, as upstream).
+  virtual void set_twist(const Twist& cmd) = 0;
+};
+
+// One odometry message of a drive plug-in, produced at its update rate.
+struct OdometryOut : Output {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // base frame in the odometry frame
+  Eigen::Vector3d linear = Eigen::Vector3d::Zero();        // [m/s], base frame
+  Eigen::Vector3d angular = Eigen::Vector3d::Zero();       // [rad/s], base frame
+  std::vector<JointState> joints;                          // the driven wheel joints at that time
+  void visit(FieldVisitor& v) const override;
+};
+
+}  // namespace car_sim

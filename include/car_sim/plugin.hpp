@@ -1,0 +1,195 @@
+// Plug-ins as parts: what a plug-in kind declares (its Gazebo file names, schema, validation, factory) and what
+// an instance does on the world's step (configure, pre_physics, track, post_physics, reset), each on one
+// integer-tick schedule. The shape of gz-sim's systems and MuJoCo's plug-in callbacks, in car's words.
+// No ROS headers; a kind never sees Bullet: it acts on its robot through RobotHandle.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "car_sim/model.hpp"
+#include "car_sim/plugins.hpp"
+#include "car_sim/raycast.hpp"
+#include "car_sim/state.hpp"
+
+namespace car_sim {
+
+// ---- outputs ----------------------------------------------------------------------------------------------
+
+// Lists an output's fields for consumers that do not know its type (the Python module, the batch runner).
+class FieldVisitor {
+ public:
+  virtual ~FieldVisitor() = default;
+  virtual void number(const char* key, double v) = 0;
+  virtual void integer(const char* key, int64_t v) = 0;
+  virtual void text(const char* key, const std::string& v) = 0;
+  // A short vector (a position, a quaternion): a list in Python.
+  virtual void vector(const char* key, const double* v, size_t n) = 0;
+  // Bulk data, row-major with the given shape: a NumPy array in Python.
+  virtual void array(const char* key, const float* data, const std::vector<size_t>& shape) = 0;
+  virtual void array(const char* key, const uint8_t* data, const std::vector<size_t>& shape) = 0;
+};
+
+// A measurement or message one plug-in instance produced at one tick. Each kind has its own type.
+struct Output {
+  virtual ~Output() = default;
+  std::string robot, plugin;  // stamped by the world
+  uint64_t tick = 0;          // stamped by the world
+  virtual void visit(FieldVisitor& v) const = 0;
+};
+using OutputPtr = std::unique_ptr<Output>;
+using OutputQueue = std::vector<OutputPtr>;
+
+// ---- schedule ---------------------------------------------------------------------------------------------
+
+// Updates at ticks start + ceil(k * num / den), k = 1, 2, ...: a period of num/den ticks, so a rate such as
+// 5.5 Hz at 1 ms (2000/11 ticks) stays on its schedule exactly, with integer arithmetic only.
+class Schedule {
+ public:
+  Schedule() = default;
+  // rate [Hz] at step dt [s]; rate <= 0 means every step.
+  Schedule(double rate, double dt, uint64_t start_tick);
+  bool due(uint64_t tick) const { return tick >= next_; }
+  // After a due tick: the next one (never in the past, so a pause in activity gives no burst).
+  void advance(uint64_t tick);
+  void restart(uint64_t start_tick);
+  uint64_t next_tick() const { return next_; }
+  double period_ticks() const { return static_cast<double>(num_) / static_cast<double>(den_); }
+
+ private:
+  uint64_t num_ = 1, den_ = 1;  // period [ticks] = num / den
+  uint64_t start_ = 0, k_ = 0;
+  uint64_t next_ = 1;
+};
+
+// ---- what a plug-in may read and do -----------------------------------------------------------------------
+
+// A motor's targets for the next step: velocity (with its gain) and position (with its gain), both optional.
+struct MotorTarget {
+  double velocity = 0.0;  // [rad/s] or [m/s]
+  double kd = 1.0;        // [-] velocity gain (1 = hold the target as a hard constraint, capped by the effort)
+  double position = 0.0;  // [rad] or [m]
+  double kp = 0.0;        // [-] fraction of the position error corrected per step (0 = none)
+};
+
+// A plug-in's robot. Read access any time; actuation (motors, efforts) in configure and pre_physics only.
+class RobotHandle {
+ public:
+  virtual ~RobotHandle() = default;
+  virtual const std::string& name() const = 0;
+  virtual const RobotModel& model() const = 0;
+  virtual const Eigen::Isometry3d& spawn_pose() const = 0;
+
+  // A non-fixed joint's index, -1 when the robot has none of that name.
+  virtual int joint(const std::string& name) const = 0;
+  virtual double joint_position(int joint) const = 0;  // [rad] or [m]
+  virtual double joint_velocity(int joint) const = 0;  // [rad/s] or [m/s]
+  // A motor on a joint with an effort cap [N m] or [N]; returns its id. In configure only.
+  virtual int add_motor(int joint, double max_effort) = 0;
+  virtual void set_motor(int motor, const MotorTarget& target) = 0;
+
+  // A link's frame in the world (fixed-joint children included); throws for an unknown link.
+  virtual Eigen::Isometry3d link_pose(const std::string& link) const = 0;
+  // A link's frame with the velocity of its origin, world frame; throws for an unknown link.
+  virtual ModelState link_state(const std::string& link) const = 0;
+  // The root link's frame, with the velocity of its origin, world frame.
+  virtual ModelState root_state() const = 0;
+};
+
+// What a plug-in may read of the world at a step.
+class WorldAccess {
+ public:
+  virtual ~WorldAccess() = default;
+  virtual const Environment& environment() const = 0;
+  // The ray scene with every body where it is at this tick (built on first use in a step).
+  virtual const RayScene& rays() const = 0;
+  // Contacts of the last step with a positive normal force.
+  virtual std::vector<Contact> contacts() const = 0;
+};
+
+struct StepContext {
+  uint64_t tick = 0;   // the tick the step starts from (pre_physics) or has reached (track, post_physics)
+  double dt = 0.0;     // [s] physics step
+  const WorldAccess* world = nullptr;
+  double time() const { return static_cast<double>(tick) * dt; }  // [s]
+};
+
+// ---- instances --------------------------------------------------------------------------------------------
+
+class Plugin {
+ public:
+  virtual ~Plugin() = default;
+  // [Hz] of post_physics; 0 = every step.
+  virtual double update_rate() const = 0;
+  // Joints this plug-in drives. Asked before the robot's physics is built (a driven caster keeps its friction).
+  virtual std::vector<std::string> driven_joints() const { return {}; }
+  // Binds to the robot: looks its joints and links up, adds motors. Once, after the robot's bodies exist.
+  virtual void configure(RobotHandle& robot) {}
+  // Every step, before physics: motor targets, forces.
+  virtual void pre_physics(const StepContext& ctx, RobotHandle& robot) {}
+  // Every step after physics, read-only: integrators between updates. A lazy plug-in only while active.
+  virtual void track(const StepContext& ctx, const RobotHandle& robot) {}
+  // When the schedule is due (a lazy plug-in: and active), read-only: measure, push outputs.
+  virtual void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) {}
+  // Back to the state right after configure (a world reset put the robot back at its spawn pose).
+  virtual void reset() {}
+  // A lazy plug-in was switched on or off.
+  virtual void set_active(bool active) {}
+};
+
+// What the resolver hands a kind's finish(): the plug-in being resolved, its model and where to report.
+class ResolveContext {
+ public:
+  ResolveContext(const RobotModel& model, const PluginSpec& spec, const SensorSpec* sensor, PluginConfig* config,
+                 std::vector<Diagnostic>* diagnostics);
+  const RobotModel& model() const { return model_; }
+  const PluginSpec& spec() const { return spec_; }
+  const SensorSpec* sensor() const { return sensor_; }
+  PluginConfig& config() { return *config_; }
+  // A plug-in key's element path ("gazebo/plugin[NAME]/KEY" or "sensor[S]/plugin[NAME]/KEY").
+  std::string where(const std::string& key) const;
+  // Load errors at a plug-in key, or at a sensor key ("sensor[S]/KEY").
+  [[noreturn]] void fail(const std::string& key, const std::string& reason) const;
+  [[noreturn]] void fail_sensor(const std::string& key, const std::string& reason) const;
+  void warn(Severity severity, const std::string& code, const std::string& key, const std::string& message);
+  void set(const std::string& key, const std::string& value);  // replaces a resolved value
+
+ private:
+  const RobotModel& model_;
+  const PluginSpec& spec_;
+  const SensorSpec* sensor_;
+  PluginConfig* config_;
+  std::vector<Diagnostic>* diagnostics_;
+};
+
+// A plug-in kind, registered once in src/plugins/registry.cpp.
+struct PluginKind {
+  std::string name;                         // registry name, e.g. "diff_drive"
+  std::vector<std::string> filenames;       // Gazebo plug-in file names it serves
+  bool model_level = true;                  // may stand in a robot-level <gazebo><plugin>
+  std::vector<std::string> sensor_types;    // <sensor type>s it may sit in; empty: not a sensor plug-in
+  std::vector<ParamDef> sensor_schema;      // keys of its <sensor> (flattened paths, update_rate included)
+  std::vector<ParamDef> schema;             // keys of its <plugin>
+  std::map<std::string, std::string> ignored;  // keys upstream accepts and ignores -> a note ("" = silent)
+  bool lazy = false;                        // a measurement: computed only while someone listens
+  std::string output_group;                 // key of its outputs in Python's take_sensor_outputs(), e.g. "scans"
+  // Checks resolved values against the model and fills derived defaults (ctx.fail for errors).
+  std::function<void(ResolveContext&)> finish;
+  // An instance for a resolved configuration. seed: the world's noise seed.
+  std::function<std::unique_ptr<Plugin>(const PluginConfig& config, const std::string& robot, uint64_t seed)> make;
+};
+
+// Every registered kind, in registration order.
+const std::vector<const PluginKind*>& plugin_kinds();
+const PluginKind* find_plugin_kind(const std::string& name);
+const PluginKind* plugin_kind_for_file(const std::string& filename);
+
+// The generator of one measuring plug-in: the same seed and names give the same noise, whatever else runs.
+std::mt19937_64 plugin_rng(uint64_t seed, const std::string& robot, const std::string& name);
+
+}  // namespace car_sim

@@ -1,0 +1,658 @@
+// The Bullet world: robots as btMultiBody (reduced coordinates, fixed joints merged), world models as rigid
+// bodies and static objects, Gazebo's friction rule, the wheel and ball-caster contact rules, motors, and the
+// ray scene mirroring the collision geometry.
+#include "physics.hpp"
+
+#include <btBulletDynamicsCommon.h>
+#include <BulletDynamics/Featherstone/btMultiBody.h>
+#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
+#include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointLimitConstraint.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+#include "bodies.hpp"
+#include "materials.hpp"
+
+namespace car_sim {
+namespace physics {
+
+using detail::Body;
+using detail::BodyTree;
+
+namespace {
+
+// Collision margin for boxes and cylinders [m]; Bullet keeps the outer size, so this only rounds edges.
+constexpr double kMargin = 0.0005;
+
+btVector3 bt(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.z()); }
+Eigen::Vector3d eig(const btVector3& v) { return Eigen::Vector3d(v.x(), v.y(), v.z()); }
+
+btTransform bt(const Eigen::Isometry3d& T) {
+  const Eigen::Quaterniond q(T.linear());
+  return btTransform(btQuaternion(q.x(), q.y(), q.z(), q.w()), bt(Eigen::Vector3d(T.translation())));
+}
+
+Eigen::Isometry3d eig(const btTransform& t) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  const btQuaternion q = t.getRotation();
+  T.linear() = Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()).normalized().toRotationMatrix();
+  T.translation() = eig(t.getOrigin());
+  return T;
+}
+
+btQuaternion bt_quat(const Eigen::Matrix3d& R) {
+  const Eigen::Quaterniond q(R);
+  return btQuaternion(q.x(), q.y(), q.z(), q.w());
+}
+
+// Gazebo (ODE) combines two surfaces' friction as the smaller of the two.
+btScalar min_friction(const btCollisionObject* a, const btCollisionObject* b) {
+  return std::min(a->getFriction(), b->getFriction());
+}
+
+btScalar no_restitution(const btCollisionObject*, const btCollisionObject*) { return 0.0; }
+
+bool is_identity(const Eigen::Isometry3d& T) {
+  return T.translation().norm() < 1e-12 && (T.linear() - Eigen::Matrix3d::Identity()).norm() < 1e-12;
+}
+
+// How a URDF link looks to the sensors.
+SurfaceLook urdf_look(const Link& l) {
+  SurfaceLook look;
+  look.laser_retro = l.gazebo.laser_retro.value_or(0.0);
+  look.rgba = link_colour(l);
+  return look;
+}
+
+// How an SDF link looks: its first visual's colour.
+SurfaceLook sdf_look(const WorldLink& l) {
+  SurfaceLook look;
+  look.rgba = l.visuals.empty() ? kDefaultColour : visual_colour(l.visuals.front());
+  return look;
+}
+
+// A wheel: one cylinder spinning about its own axis. It collides as a sphere of the wheel radius, so it
+// touches the ground at one point under its centre, the way an ideal rolling wheel does.
+bool is_wheel(const Body& b) {
+  if (!b.joint || b.shapes.size() != 1 || b.shapes[0].shape.type != ShapeType::Cylinder) return false;
+  if (b.joint->type != JointType::Continuous && b.joint->type != JointType::Revolute) return false;
+  const Eigen::Vector3d cyl_axis = b.shapes[0].in_top.linear() * Eigen::Vector3d::UnitZ();
+  return std::abs(cyl_axis.dot(b.joint->axis)) > 0.99;
+}
+
+// A ball caster: one sphere centred on an undriven continuous joint. URDF cannot say "rolls in every
+// direction", so models write a continuous joint (the seed's casters even with axis 1 1 1, one diagonal
+// axis to a physics engine). car simulates the intended part: the sphere carries load and rolls freely in
+// every direction, i.e. its contact has no friction.
+bool is_ball_caster(const Body& b, const std::set<std::string>& driven) {
+  if (!b.joint || b.joint->type != JointType::Continuous || driven.count(b.joint->name)) return false;
+  if (b.shapes.size() != 1 || b.shapes[0].shape.type != ShapeType::Sphere) return false;
+  return b.shapes[0].in_top.translation().norm() < 1e-9;
+}
+
+}  // namespace
+
+// ---- Bullet state -------------------------------------------------------------------------------------------
+
+class BulletRobot;
+
+struct Physics::Impl {
+  Options options;
+  btDefaultCollisionConfiguration config;
+  btCollisionDispatcher dispatcher{&config};
+  btDbvtBroadphase broadphase;
+  btMultiBodyConstraintSolver solver;
+  btMultiBodyDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::vector<std::unique_ptr<btCollisionObject>> objects;  // static objects and rigid bodies
+  std::vector<std::unique_ptr<btMotionState>> motion_states;
+
+  struct DynModel {
+    std::string name;
+    const WorldModelDesc* desc;
+    std::vector<btRigidBody*> bodies;          // one per link
+    std::vector<Eigen::Isometry3d> link_to_com;
+  };
+  std::vector<DynModel> dyn_models;            // dynamic world models
+  std::vector<const WorldModelDesc*> static_models;
+  std::map<std::string, std::vector<btCollisionObject*>> model_objects;  // world model -> its Bullet objects
+  std::vector<std::unique_ptr<BulletRobot>> robots;
+  std::vector<std::string> object_names;       // btCollisionObject user index -> "model/link"
+
+  std::unique_ptr<RayScene> rays;
+  std::vector<std::pair<int, const btCollisionObject*>> moving_ray_bodies;  // ray body -> its Bullet object
+  uint64_t rays_stamp = ~0ull;                 // the step count the ray poses were taken at
+  uint64_t steps = 0;
+
+  Impl(const WorldDescription& d, const Options& o);
+  ~Impl();
+
+  void name_object(btCollisionObject* o, const std::string& name) {
+    o->setUserIndex(static_cast<int>(object_names.size()));
+    object_names.push_back(name);
+  }
+
+  btCollisionShape* own(btCollisionShape* s) {
+    shapes.emplace_back(s);
+    return s;
+  }
+
+  // A Bullet shape for a primitive; nullptr for what Bullet cannot collide here (meshes for now).
+  btCollisionShape* make_shape(const Shape& s) {
+    switch (s.type) {
+      case ShapeType::Box: {
+        auto* b = new btBoxShape(bt(Eigen::Vector3d(s.size / 2.0)));
+        b->setMargin(kMargin);
+        return own(b);
+      }
+      case ShapeType::Cylinder: {
+        auto* c = new btCylinderShapeZ(btVector3(s.radius, s.radius, s.length / 2.0));
+        c->setMargin(kMargin);
+        return own(c);
+      }
+      case ShapeType::Sphere:
+        return own(new btSphereShape(s.radius));
+      default:
+        return nullptr;
+    }
+  }
+
+  // One shape, or a compound of several, placed relative to a frame (com for moving bodies).
+  btCollisionShape* make_body_shape(const std::vector<std::pair<Shape, Eigen::Isometry3d>>& parts) {
+    std::vector<std::pair<btCollisionShape*, Eigen::Isometry3d>> made;
+    for (const auto& p : parts)
+      if (btCollisionShape* s = make_shape(p.first)) made.emplace_back(s, p.second);
+    if (made.empty()) return nullptr;
+    if (made.size() == 1 && is_identity(made[0].second)) return made[0].first;
+    auto* compound = new btCompoundShape(true, static_cast<int>(made.size()));
+    for (const auto& m : made) compound->addChildShape(bt(m.second), m.first);
+    return own(compound);
+  }
+
+  void add_world_model(const WorldModelDesc& m);
+  Eigen::Isometry3d dyn_model_pose(const DynModel& dm) const;
+  void build_rays();
+};
+
+// ---- robots -------------------------------------------------------------------------------------------------
+
+class BulletRobot : public Robot {
+ public:
+  BulletRobot(Physics::Impl& P, const RobotModel& model, const std::string& name, const Eigen::Isometry3d& pose,
+              const std::set<std::string>& driven)
+      : P_(P), model_(model), name_(name), tree_(detail::build_bodies(model_)) {
+    const int n_links = static_cast<int>(tree_.bodies.size()) - 1;
+    const Body& base = tree_.bodies[0];
+    mb_ = std::make_unique<btMultiBody>(n_links, base.mass, bt(base.principal), false, false);
+    btMultiBody* mb = mb_.get();
+    mb->setBaseWorldTransform(bt(pose * base.top_to_com));
+    mb->setLinearDamping(0.0);
+    mb->setAngularDamping(0.0);
+    mb->setUseGyroTerm(true);
+    mb->setHasSelfCollision(false);
+    mb->setMaxCoordinateVelocity(1000.0);
+    for (int i = 1; i <= n_links; ++i) {
+      const Body& b = tree_.bodies[i];
+      const Body& p = tree_.bodies[b.parent];
+      const Joint& j = *b.joint;
+      // child link frame at zero joint position, in the parent body's top frame
+      const Eigen::Isometry3d top_to_child = tree_.link_in_top.at(j.parent) * j.origin;
+      const Eigen::Isometry3d pcom_to_child = p.top_to_com.inverse() * top_to_child;
+      const Eigen::Isometry3d child_to_com = b.top_to_com;
+      // rotation from the parent com frame to this com frame
+      const Eigen::Matrix3d rot_parent_to_this = (pcom_to_child.linear() * child_to_com.linear()).transpose();
+      const Eigen::Vector3d axis_in_com = child_to_com.linear().transpose() * j.axis;
+      const Eigen::Vector3d pivot_in_parent = pcom_to_child.translation();
+      const Eigen::Vector3d pivot_to_com = child_to_com.linear().transpose() * child_to_com.translation();
+      if (j.type == JointType::Prismatic) {
+        mb->setupPrismatic(i - 1, b.mass, bt(b.principal), b.parent - 1, bt_quat(rot_parent_to_this), bt(axis_in_com),
+                           bt(pivot_in_parent), bt(pivot_to_com), true);
+      } else {
+        mb->setupRevolute(i - 1, b.mass, bt(b.principal), b.parent - 1, bt_quat(rot_parent_to_this), bt(axis_in_com),
+                          bt(pivot_in_parent), bt(pivot_to_com), true);
+      }
+      mb->getLink(i - 1).m_jointDamping = j.damping;
+      mb->getLink(i - 1).m_jointFriction = j.friction;
+      joint_link_[j.name] = i - 1;
+    }
+    mb->finalizeMultiDof();
+    P_.world.addMultiBody(mb);
+
+    // Colliders, one per body with shapes.
+    for (int i = 0; i <= n_links; ++i) {
+      const Body& b = tree_.bodies[i];
+      std::vector<std::pair<Shape, Eigen::Isometry3d>> parts;
+      double mu = 1.0;
+      if (is_wheel(b)) {
+        Shape sphere;
+        sphere.type = ShapeType::Sphere;
+        sphere.radius = b.shapes[0].shape.radius;
+        Eigen::Isometry3d at = Eigen::Isometry3d::Identity();
+        at.translation() = b.shapes[0].in_top.translation();
+        parts.emplace_back(sphere, b.top_to_com.inverse() * at);
+        mu = b.shapes[0].mu;
+      } else {
+        for (const auto& s : b.shapes) {
+          if (s.shape.type == ShapeType::Plane) continue;
+          parts.emplace_back(s.shape, b.top_to_com.inverse() * s.in_top);
+          mu = s.mu;
+        }
+      }
+      if (is_ball_caster(b, driven)) mu = 0.0;
+      btCollisionShape* shape = P_.make_body_shape(parts);
+      if (!shape) continue;
+      auto col = std::make_unique<btMultiBodyLinkCollider>(mb, i - 1);
+      col->setCollisionShape(shape);
+      col->setFriction(mu);
+      col->setRestitution(0.0);
+      P_.name_object(col.get(), name_ + "/" + b.top);
+      P_.world.addCollisionObject(col.get(), btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
+      if (i == 0)
+        mb->setBaseCollider(col.get());
+      else
+        mb->getLink(i - 1).m_collider = col.get();
+      colliders_.push_back(std::move(col));
+    }
+    for (const auto& j : model_.joints) {
+      if (j.type != JointType::Revolute || !j.limits || j.limits->lower >= j.limits->upper) continue;
+      add_constraint(new btMultiBodyJointLimitConstraint(mb, joint_link_.at(j.name), j.limits->lower, j.limits->upper));
+    }
+    update_colliders();
+  }
+
+  ~BulletRobot() override {
+    for (auto& c : constraints_) P_.world.removeMultiBodyConstraint(c.get());
+    for (auto& c : colliders_) P_.world.removeCollisionObject(c.get());
+    P_.world.removeMultiBody(mb_.get());
+  }
+
+  const std::string& name() const { return name_; }
+  const BodyTree& tree() const { return tree_; }
+  const RobotModel& model() const { return model_; }
+  btMultiBody* mb() const { return mb_.get(); }
+
+  int joint(const std::string& name) const override {
+    const auto it = joint_link_.find(name);
+    return it == joint_link_.end() ? -1 : it->second;
+  }
+  double joint_position(int j) const override { return mb_->getJointPos(j); }
+  double joint_velocity(int j) const override { return mb_->getJointVel(j); }
+
+  int add_motor(int joint, double max_effort) override {
+    auto* m = new btMultiBodyJointMotor(mb_.get(), joint, 0, 0.0, max_effort * P_.options.dt);
+    add_constraint(m);
+    motors_.push_back(m);
+    return static_cast<int>(motors_.size()) - 1;
+  }
+
+  void set_motor(int motor, const MotorTarget& t) override {
+    btMultiBodyJointMotor* m = motors_.at(motor);
+    m->setVelocityTarget(t.velocity, t.kd);
+    m->setPositionTarget(t.position, t.kp);
+  }
+
+  bool has_link(const std::string& link) const override { return tree_.body_of_link.count(link) > 0; }
+
+  Eigen::Isometry3d link_pose(const std::string& link) const override {
+    const auto it = tree_.body_of_link.find(link);
+    if (it == tree_.body_of_link.end())
+      throw std::invalid_argument("robot '" + name_ + "' has no link '" + link + "'");
+    const Body& b = tree_.bodies[it->second];
+    return body_com_pose(it->second) * b.top_to_com.inverse() * tree_.link_in_top.at(link);
+  }
+
+  ModelState link_state(const std::string& link) const override {
+    const auto it = tree_.body_of_link.find(link);
+    if (it == tree_.body_of_link.end())
+      throw std::invalid_argument("robot '" + name_ + "' has no link '" + link + "'");
+    const int body = it->second;
+    ModelState s;
+    const Eigen::Isometry3d com = body_com_pose(body);
+    s.pose = com * tree_.bodies[body].top_to_com.inverse() * tree_.link_in_top.at(link);
+    Eigen::Vector3d v_com;
+    if (body == 0) {
+      s.angular = eig(mb_->getBaseOmega());
+      v_com = eig(mb_->getBaseVel());
+    } else {
+      // each body's spatial velocity in its own (com) frame, then into the world
+      const int n = mb_->getNumLinks();
+      std::vector<btVector3> omega(n + 1), vel(n + 1);
+      mb_->compTreeLinkVelocities(omega.data(), vel.data());
+      s.angular = com.linear() * eig(omega[body]);
+      v_com = com.linear() * eig(vel[body]);
+    }
+    // velocity of the link frame's origin
+    s.linear = v_com + s.angular.cross(s.pose.translation() - com.translation());
+    return s;
+  }
+
+  ModelState root_state() const override {
+    ModelState s;
+    s.pose = eig(mb_->getBaseWorldTransform()) * tree_.bodies[0].top_to_com.inverse();
+    s.angular = eig(mb_->getBaseOmega());
+    const Eigen::Vector3d com = eig(mb_->getBasePos());
+    // velocity of the root frame's origin
+    s.linear = eig(mb_->getBaseVel()) + s.angular.cross(s.pose.translation() - com);
+    return s;
+  }
+
+  void set_root_state(const ModelState& st) override {
+    const Eigen::Isometry3d com = st.pose * tree_.bodies[0].top_to_com;
+    mb_->setBaseWorldTransform(bt(com));
+    mb_->setBaseOmega(bt(st.angular));
+    mb_->setBaseVel(bt(Eigen::Vector3d(st.linear + st.angular.cross(com.translation() - st.pose.translation()))));
+    update_colliders();
+  }
+
+  // Pose of a body's com frame in the world.
+  Eigen::Isometry3d body_com_pose(int body) const {
+    if (body == 0) return eig(mb_->getBaseWorldTransform());
+    btAlignedObjectArray<btQuaternion> q;
+    btAlignedObjectArray<btVector3> v;
+    mb_->forwardKinematics(q, v);
+    return eig(mb_->getLink(body - 1).m_cachedWorldTransform);
+  }
+
+  const btCollisionObject* collider(int body) const {
+    return body == 0 ? mb_->getBaseCollider() : mb_->getLink(body - 1).m_collider;
+  }
+
+ private:
+  void add_constraint(btMultiBodyConstraint* c) {
+    constraints_.emplace_back(c);
+    P_.world.addMultiBodyConstraint(c);
+  }
+
+  void update_colliders() {
+    btAlignedObjectArray<btQuaternion> q;
+    btAlignedObjectArray<btVector3> v;
+    mb_->updateCollisionObjectWorldTransforms(q, v);
+  }
+
+  Physics::Impl& P_;
+  RobotModel model_;
+  std::string name_;
+  BodyTree tree_;
+  std::unique_ptr<btMultiBody> mb_;
+  std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders_;
+  std::vector<std::unique_ptr<btMultiBodyConstraint>> constraints_;  // joint limits and motors
+  std::vector<btMultiBodyJointMotor*> motors_;
+  std::map<std::string, int> joint_link_;     // non-fixed joint -> multibody link index
+};
+
+Physics::Impl::Impl(const WorldDescription& d, const Options& o) : options(o) {
+  world.setGravity(bt(d.gravity));
+  btContactSolverInfo& si = world.getSolverInfo();
+  si.m_numIterations = o.solver_iterations;
+  // stop iterating once the solution has converged
+  si.m_leastSquaresResidualThreshold = o.residual_threshold;
+  // two friction directions per contact (ODE's friction pyramid, as Gazebo) instead of Bullet's cone
+  si.m_solverMode |= SOLVER_DISABLE_IMPLICIT_CONE_FRICTION;
+  // carry the whole previous impulse over, so a resting solution keeps converging from step to step
+  si.m_warmstartingFactor = 1.0;
+  gCalculateCombinedFrictionCallback = &min_friction;
+  gCalculateCombinedRestitutionCallback = &no_restitution;
+}
+
+Physics::Impl::~Impl() {
+  robots.clear();
+  for (auto& o : objects) {
+    if (auto* rb = btRigidBody::upcast(o.get()))
+      world.removeRigidBody(rb);
+    else
+      world.removeCollisionObject(o.get());
+  }
+}
+
+// ---- world models -------------------------------------------------------------------------------------------
+
+void Physics::Impl::add_world_model(const WorldModelDesc& m) {
+  if (m.is_static) {
+    static_models.push_back(&m);
+    for (const auto& l : m.links) {
+      const Eigen::Isometry3d T_link = m.pose * l.pose;
+      for (const auto& c : l.collisions) {
+        btCollisionShape* shape = nullptr;
+        Eigen::Isometry3d T = T_link * c.shape.origin;
+        if (c.shape.type == ShapeType::Plane) {
+          // plane through the collision frame's origin, normal in that frame
+          const Eigen::Vector3d n = (T.linear() * c.shape.normal).normalized();
+          shape = own(new btStaticPlaneShape(bt(n), n.dot(T.translation())));
+          T = Eigen::Isometry3d::Identity();
+        } else {
+          shape = make_shape(c.shape);
+        }
+        if (!shape) continue;
+        auto* obj = new btCollisionObject();
+        obj->setCollisionShape(shape);
+        obj->setWorldTransform(bt(T));
+        obj->setFriction(c.friction.mu);
+        obj->setRestitution(0.0);
+        objects.emplace_back(obj);
+        name_object(obj, m.name + "/" + l.name);
+        model_objects[m.name].push_back(obj);
+        world.addCollisionObject(obj, btBroadphaseProxy::StaticFilter,
+                                 btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter);
+      }
+    }
+    return;
+  }
+  DynModel dm;
+  dm.name = m.name;
+  dm.desc = &m;
+  for (const auto& l : m.links) {
+    // principal frame of the link's inertia at its centre of mass
+    const Inertial& in = *l.inertial;
+    Eigen::Vector3d principal;
+    const Eigen::Matrix3d R = detail::principal_axes(in.inertia, &principal);
+    Eigen::Isometry3d link_to_com = in.origin;
+    link_to_com.linear() = in.origin.linear() * R;
+    std::vector<std::pair<Shape, Eigen::Isometry3d>> parts;
+    double mu = 1.0;
+    for (const auto& c : l.collisions) {
+      parts.emplace_back(c.shape, link_to_com.inverse() * c.shape.origin);
+      mu = c.friction.mu;
+    }
+    btCollisionShape* shape = make_body_shape(parts);
+    if (!shape) shape = own(new btEmptyShape());
+    const Eigen::Isometry3d T = m.pose * l.pose * link_to_com;
+    auto* ms = new btDefaultMotionState(bt(T));
+    motion_states.emplace_back(ms);
+    btRigidBody::btRigidBodyConstructionInfo ci(in.mass, ms, shape, bt(principal));
+    ci.m_friction = mu;
+    ci.m_restitution = 0.0;
+    ci.m_linearDamping = 0.0;
+    ci.m_angularDamping = 0.0;
+    auto* rb = new btRigidBody(ci);
+    // Resting world objects sleep (no work) until something touches them; the robot never sleeps.
+    objects.emplace_back(rb);
+    name_object(rb, m.name + "/" + l.name);
+    model_objects[m.name].push_back(rb);
+    world.addRigidBody(rb);
+    dm.bodies.push_back(rb);
+    dm.link_to_com.push_back(link_to_com);
+  }
+  dyn_models.push_back(std::move(dm));
+}
+
+Eigen::Isometry3d Physics::Impl::dyn_model_pose(const DynModel& dm) const {
+  // model frame from the canonical (first) link
+  const Eigen::Isometry3d com = eig(dm.bodies[0]->getWorldTransform());
+  return com * dm.link_to_com[0].inverse() * dm.desc->links[0].pose.inverse();
+}
+
+// ---- ray scene ----------------------------------------------------------------------------------------------
+
+// The ray scene mirrors the collision geometry: static shapes at their world poses, every moving body (world
+// rigid bodies, robot bodies split per link for their colours) as an instance in its Bullet com frame.
+// Robot wheels are seen as the cylinders they are, not the spheres they roll on.
+void Physics::Impl::build_rays() {
+  rays = std::make_unique<RayScene>();
+  moving_ray_bodies.clear();
+  for (const WorldModelDesc* m : static_models) {
+    if (!model_objects.count(m->name)) continue;  // removed
+    for (const auto& l : m->links) {
+      std::vector<std::pair<Shape, Eigen::Isometry3d>> s;
+      for (const auto& c : l.collisions) s.emplace_back(c.shape, m->pose * l.pose * c.shape.origin);
+      if (!s.empty()) rays->add_body(s, sdf_look(l));
+    }
+  }
+  for (const auto& dm : dyn_models) {
+    for (size_t i = 0; i < dm.bodies.size(); ++i) {
+      const WorldLink& l = dm.desc->links[i];
+      std::vector<std::pair<Shape, Eigen::Isometry3d>> s;
+      for (const auto& c : l.collisions) s.emplace_back(c.shape, dm.link_to_com[i].inverse() * c.shape.origin);
+      if (s.empty()) continue;
+      moving_ray_bodies.emplace_back(rays->add_body(s, sdf_look(l)), dm.bodies[i]);
+    }
+  }
+  for (auto& r : robots) {
+    const BodyTree& tree = r->tree();
+    for (size_t b = 0; b < tree.bodies.size(); ++b) {
+      const Body& body = tree.bodies[b];
+      const btCollisionObject* col = r->collider(static_cast<int>(b));
+      if (!col) continue;
+      for (const auto& name : body.links) {
+        const Link* l = r->model().find_link(name);
+        std::vector<std::pair<Shape, Eigen::Isometry3d>> s;
+        for (const auto& c : l->collisions)
+          s.emplace_back(c, body.top_to_com.inverse() * tree.link_in_top.at(name) * c.origin);
+        if (s.empty()) continue;
+        moving_ray_bodies.emplace_back(rays->add_body(s, urdf_look(*l)), col);
+      }
+    }
+  }
+  rays_stamp = ~0ull;
+}
+
+// ---- Physics ------------------------------------------------------------------------------------------------
+
+Physics::Physics(const WorldDescription& desc, const Options& options, const std::set<std::string>& removed)
+    : impl_(std::make_unique<Impl>(desc, options)) {
+  for (const auto& m : desc.models)
+    if (!removed.count(m.name)) impl_->add_world_model(m);
+}
+
+Physics::~Physics() = default;
+
+Robot& Physics::add_robot(const RobotModel& model, const std::string& name, const Eigen::Isometry3d& pose,
+                          const std::set<std::string>& driven) {
+  impl_->robots.push_back(std::make_unique<BulletRobot>(*impl_, model, name, pose, driven));
+  impl_->rays.reset();
+  return *impl_->robots.back();
+}
+
+void Physics::remove_robot(const std::string& name) {
+  auto& rs = impl_->robots;
+  rs.erase(std::remove_if(rs.begin(), rs.end(), [&](const auto& r) { return r->name() == name; }), rs.end());
+  impl_->rays.reset();
+}
+
+void Physics::remove_world_model(const std::string& name) {
+  for (btCollisionObject* o : impl_->model_objects[name]) {
+    if (auto* rb = btRigidBody::upcast(o))
+      impl_->world.removeRigidBody(rb);
+    else
+      impl_->world.removeCollisionObject(o);
+    auto& objs = impl_->objects;
+    objs.erase(std::remove_if(objs.begin(), objs.end(), [o](const auto& p) { return p.get() == o; }), objs.end());
+  }
+  impl_->model_objects.erase(name);
+  auto& dms = impl_->dyn_models;
+  dms.erase(std::remove_if(dms.begin(), dms.end(), [&](const Impl::DynModel& x) { return x.name == name; }), dms.end());
+  impl_->rays.reset();
+}
+
+Robot* Physics::find_robot(const std::string& name) {
+  for (auto& r : impl_->robots)
+    if (r->name() == name) return r.get();
+  return nullptr;
+}
+
+const Robot* Physics::find_robot(const std::string& name) const {
+  for (const auto& r : impl_->robots)
+    if (r->name() == name) return r.get();
+  return nullptr;
+}
+
+void Physics::step(double dt) {
+  // physics: one fixed step, no internal substepping
+  impl_->world.stepSimulation(dt, 0, dt);
+  ++impl_->steps;
+}
+
+std::optional<ModelState> Physics::world_model_state(const std::string& name) const {
+  for (const auto& dm : impl_->dyn_models) {
+    if (dm.name != name) continue;
+    ModelState s;
+    const btRigidBody* rb = dm.bodies[0];
+    const Eigen::Isometry3d com = eig(rb->getWorldTransform());
+    s.pose = impl_->dyn_model_pose(dm);
+    s.angular = eig(rb->getAngularVelocity());
+    s.linear = eig(rb->getLinearVelocity()) + s.angular.cross(s.pose.translation() - com.translation());
+    return s;
+  }
+  return std::nullopt;
+}
+
+bool Physics::set_world_model_state(const std::string& name, const ModelState& st) {
+  for (auto& dm : impl_->dyn_models) {
+    if (dm.name != name) continue;
+    for (size_t i = 0; i < dm.bodies.size(); ++i) {
+      const Eigen::Isometry3d com = st.pose * dm.desc->links[i].pose * dm.link_to_com[i];
+      dm.bodies[i]->setWorldTransform(bt(com));
+      dm.bodies[i]->getMotionState()->setWorldTransform(bt(com));
+      dm.bodies[i]->setAngularVelocity(bt(st.angular));
+      dm.bodies[i]->setLinearVelocity(
+          bt(Eigen::Vector3d(st.linear + st.angular.cross(com.translation() - st.pose.translation()))));
+    }
+    return true;
+  }
+  return false;
+}
+
+std::vector<Contact> Physics::contacts(double dt) const {
+  std::vector<Contact> out;
+  btDispatcher* d = impl_->world.getDispatcher();
+  const auto& names = impl_->object_names;
+  auto name = [&](const btCollisionObject* o) {
+    const int i = o->getUserIndex();
+    return i >= 0 && i < static_cast<int>(names.size()) ? names[i] : std::string("?");
+  };
+  for (int i = 0; i < d->getNumManifolds(); ++i) {
+    const btPersistentManifold* m = d->getManifoldByIndexInternal(i);
+    for (int k = 0; k < m->getNumContacts(); ++k) {
+      const btManifoldPoint& p = m->getContactPoint(k);
+      if (p.getAppliedImpulse() <= 0.0) continue;
+      Contact c;
+      c.a = name(m->getBody0());
+      c.b = name(m->getBody1());
+      c.position = eig(p.getPositionWorldOnB());
+      c.normal = eig(p.m_normalWorldOnB);
+      c.normal_force = p.getAppliedImpulse() / dt;
+      out.push_back(std::move(c));
+    }
+  }
+  return out;
+}
+
+const RayScene& Physics::rays() {
+  if (!impl_->rays) impl_->build_rays();
+  if (impl_->rays_stamp != impl_->steps) {
+    for (const auto& [body, obj] : impl_->moving_ray_bodies) impl_->rays->set_pose(body, eig(obj->getWorldTransform()));
+    impl_->rays->commit();
+    impl_->rays_stamp = impl_->steps;
+  }
+  return *impl_->rays;
+}
+
+void Physics::invalidate_rays() { impl_->rays_stamp = ~0ull; }
+
+}  // namespace physics
+}  // namespace car_sim

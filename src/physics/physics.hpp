@@ -1,0 +1,82 @@
+// The Bullet world (private to the core): robots as btMultiBody (reduced coordinates, fixed joints merged),
+// world models as rigid bodies and static objects, Gazebo's contact rules, and the ray scene kept in step with
+// the bodies. Knows nothing of plug-ins: they act through RobotHandle, which the world implements over this.
+#pragma once
+
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "car_sim/description.hpp"
+#include "car_sim/model.hpp"
+#include "car_sim/plugin.hpp"
+#include "car_sim/raycast.hpp"
+#include "car_sim/state.hpp"
+
+namespace car_sim {
+namespace physics {
+
+struct Options {
+  int solver_iterations = 10;
+  double residual_threshold = 1e-9;
+  double dt = 0.001;  // [s]; motors cap their impulse at effort * dt
+};
+
+class Robot;
+
+class Physics {
+ public:
+  // The world's models (less the removed ones) and gravity.
+  Physics(const WorldDescription& desc, const Options& options, const std::set<std::string>& removed);
+  ~Physics();
+  Physics(const Physics&) = delete;
+  Physics& operator=(const Physics&) = delete;
+
+  // A robot from its model; driven: joints a plug-in drives (their ball casters keep friction).
+  // Throws LoadError for a model the physics cannot build.
+  Robot& add_robot(const RobotModel& model, const std::string& name, const Eigen::Isometry3d& pose,
+                   const std::set<std::string>& driven);
+  void remove_robot(const std::string& name);
+  void remove_world_model(const std::string& name);
+  Robot* find_robot(const std::string& name);
+  const Robot* find_robot(const std::string& name) const;
+
+  // One fixed step, no substeps.
+  void step(double dt);
+
+  // A dynamic world model's state; nullopt for a static or unknown one.
+  std::optional<ModelState> world_model_state(const std::string& name) const;
+  // false when the model is not a dynamic world model.
+  bool set_world_model_state(const std::string& name, const ModelState& s);
+
+  std::vector<Contact> contacts(double dt) const;
+
+  // The ray scene over the collision geometry, every body where it is now (built on first use).
+  const RayScene& rays();
+  void invalidate_rays();
+
+  struct Impl;  // Bullet's objects (physics.cpp only)
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+// A robot's multibody, for the world's RobotHandle.
+class Robot {
+ public:
+  virtual ~Robot() = default;
+  virtual int joint(const std::string& name) const = 0;
+  virtual double joint_position(int joint) const = 0;
+  virtual double joint_velocity(int joint) const = 0;
+  virtual int add_motor(int joint, double max_effort) = 0;
+  virtual void set_motor(int motor, const MotorTarget& target) = 0;
+  virtual Eigen::Isometry3d link_pose(const std::string& link) const = 0;
+  virtual ModelState link_state(const std::string& link) const = 0;
+  virtual ModelState root_state() const = 0;
+  virtual void set_root_state(const ModelState& s) = 0;
+  virtual bool has_link(const std::string& link) const = 0;
+};
+
+}  // namespace physics
+}  // namespace car_sim

@@ -1,0 +1,230 @@
+// libgazebo_ros_diff_drive.so (gazebo_plugins, Noetic): two wheel joints driven as velocity motors capped at
+// wheelTorque, the speed target ramped at wheelAcceleration, odometry from the world or the wheel encoders at
+// updateRate. Behaviour per docs/COMPAT.md.
+#include "diff_drive.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace car_sim {
+
+DiffDriveConfig DiffDriveConfig::from(const PluginConfig& c, const std::string& model_name) {
+  DiffDriveConfig d;
+  d.plugin_name = c.name;
+  const ResolvedParam& ns = c.param("robotNamespace");
+  if (ns.from_default || ns.value.empty()) {
+    d.robot_namespace = model_name;
+  } else {
+    std::string s = ns.value;
+    while (!s.empty() && s.front() == '/') s.erase(s.begin());
+    while (!s.empty() && s.back() == '/') s.pop_back();
+    d.robot_namespace = s;  // "/" -> "" (global)
+  }
+  d.command_topic = c.text("commandTopic");
+  d.odometry_topic = c.text("odometryTopic");
+  d.odometry_frame = c.text("odometryFrame");
+  d.robot_base_frame = c.text("robotBaseFrame");
+  d.wheel_separation = c.number("wheelSeparation");
+  d.wheel_diameter = c.number("wheelDiameter");
+  d.wheel_torque = c.number("wheelTorque");
+  d.wheel_acceleration = c.number("wheelAcceleration");
+  d.update_rate = c.number("updateRate");
+  d.encoder_odometry = c.text("odometrySource") == "encoder";
+  d.publish_tf = c.flag("publishTf");
+  d.publish_odom_tf = c.flag("publishOdomTF");
+  d.publish_wheel_tf = c.flag("publishWheelTF");
+  d.publish_wheel_joint_state = c.flag("publishWheelJointState");
+  d.left_joint = c.text("leftJoint");
+  d.right_joint = c.text("rightJoint");
+  d.ros_debug_level = c.text("rosDebugLevel");
+  return d;
+}
+
+void wheel_speeds(double v, double w, double separation, double* left, double* right) {
+  *left = v - w * separation / 2.0;
+  *right = v + w * separation / 2.0;
+}
+
+double rate_limit(double current, double target, double max_step) {
+  if (max_step <= 0.0) return target;
+  return current + std::clamp(target - current, -max_step, max_step);
+}
+
+void EncoderOdometry::integrate(double sl, double sr, double separation, double dt) {
+  const double ssum = sl + sr;
+  const double sdiff = sr - sl;
+  // midpoint heading over the step (Siegwart, Autonomous Mobile Robots, 2011, p. 337)
+  const double heading = theta + sdiff / (2.0 * separation);
+  x += ssum / 2.0 * std::cos(heading);
+  y += ssum / 2.0 * std::sin(heading);
+  theta += sdiff / separation;
+  if (dt > 0.0) {
+    v = ssum / 2.0 / dt;
+    w = sdiff / separation / dt;
+  }
+}
+
+namespace {
+
+constexpr ParamType T = ParamType::Text;
+constexpr ParamType Fr = ParamType::Frame;
+constexpr ParamType N = ParamType::Number;
+constexpr ParamType F = ParamType::Flag;
+
+class DiffDrive : public Plugin, public TwistDrive {
+ public:
+  DiffDrive(const PluginConfig& c, const std::string& robot) : cfg_(DiffDriveConfig::from(c, robot)) {}
+
+  double update_rate() const override { return cfg_.update_rate; }
+  std::vector<std::string> driven_joints() const override { return {cfg_.left_joint, cfg_.right_joint}; }
+
+  void configure(RobotHandle& robot) override {
+    joint_[0] = robot.joint(cfg_.left_joint);
+    joint_[1] = robot.joint(cfg_.right_joint);
+    for (int side = 0; side < 2; ++side) motor_[side] = robot.add_motor(joint_[side], cfg_.wheel_torque);
+  }
+
+  void set_twist(const Twist& cmd) override {
+    cmd_v_ = cmd.linear.x();
+    cmd_w_ = cmd.angular.z();
+  }
+
+  void reset() override {
+    cmd_v_ = cmd_w_ = 0.0;
+    for (int side = 0; side < 2; ++side) instr_[side] = omega_[side] = q_ref_[side] = 0.0;
+    encoder_ = EncoderOdometry();
+    update_due_ = false;
+  }
+
+  // New wheel speed targets after an update, then the motors' anchor (see below).
+  void pre_physics(const StepContext& ctx, RobotHandle& robot) override {
+    if (update_due_) {
+      update_due_ = false;
+      double target[2];
+      wheel_speeds(cmd_v_, cmd_w_, cfg_.wheel_separation, &target[0], &target[1]);
+      // [m/s] change allowed over one update period
+      const double period = cfg_.update_rate > 0 ? 1.0 / cfg_.update_rate : ctx.dt;
+      const double max_step = cfg_.wheel_acceleration * period;
+      for (int side = 0; side < 2; ++side) {
+        instr_[side] = rate_limit(instr_[side], target[side], max_step);
+        omega_[side] = instr_[side] / (cfg_.wheel_diameter / 2.0);
+      }
+    }
+    // The wheel motors are velocity motors (as Gazebo's) that also pull gently toward the angle their target
+    // speed integrates to. An iterative solver leaves a small velocity error each step; without this anchor it
+    // would add up to a creep of about 0.3 mm per 10 s at rest. The anchor stays within kAnchorWindow of the
+    // actual angle, so a wheel that slips or is blocked never winds up.
+    constexpr double kAnchorWindow = 0.02;  // [rad]
+    constexpr double kAnchorGain = 0.05;    // [-] fraction of the angle error corrected per step
+    for (int side = 0; side < 2; ++side) {
+      const double q = robot.joint_position(joint_[side]);
+      q_ref_[side] = std::clamp(q_ref_[side] + omega_[side] * ctx.dt, q - kAnchorWindow, q + kAnchorWindow);
+      robot.set_motor(motor_[side], {omega_[side], 1.0, q_ref_[side], kAnchorGain});
+    }
+  }
+
+  void track(const StepContext& ctx, const RobotHandle& robot) override {
+    if (!cfg_.encoder_odometry) return;
+    const double rad = cfg_.wheel_diameter / 2.0;
+    encoder_.integrate(robot.joint_velocity(joint_[0]) * rad * ctx.dt, robot.joint_velocity(joint_[1]) * rad * ctx.dt,
+                       cfg_.wheel_separation, ctx.dt);
+  }
+
+  // The plug-in's update: odometry out (new motor targets follow in the next pre_physics).
+  void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) override {
+    update_due_ = true;
+    if (!cfg_.publish_tf) return;
+    auto o = std::make_unique<OdometryOut>();
+    const char* names[2] = {cfg_.left_joint.c_str(), cfg_.right_joint.c_str()};
+    for (int side = 0; side < 2; ++side)
+      o->joints.push_back({names[side], robot.joint_position(joint_[side]), robot.joint_velocity(joint_[side])});
+    if (cfg_.encoder_odometry) {
+      o->pose.translation() = Eigen::Vector3d(encoder_.x, encoder_.y, 0.0);
+      o->pose.linear() = Eigen::AngleAxisd(encoder_.theta, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      o->linear = Eigen::Vector3d(encoder_.v, 0.0, 0.0);
+      o->angular = Eigen::Vector3d(0.0, 0.0, encoder_.w);
+    } else {
+      const ModelState s = robot.root_state();
+      o->pose = s.pose;
+      // twist in the base frame, by yaw, as the plug-in does
+      const Eigen::Matrix3d Rm = s.pose.linear();
+      const double yaw = std::atan2(Rm(1, 0), Rm(0, 0));
+      o->linear = Eigen::Vector3d(std::cos(yaw) * s.linear.x() + std::sin(yaw) * s.linear.y(),
+                                  std::cos(yaw) * s.linear.y() - std::sin(yaw) * s.linear.x(), 0.0);
+      o->angular = Eigen::Vector3d(0.0, 0.0, s.angular.z());
+    }
+    out->push_back(std::move(o));
+  }
+
+ private:
+  DiffDriveConfig cfg_;
+  int joint_[2] = {-1, -1};
+  int motor_[2] = {-1, -1};
+  double cmd_v_ = 0.0, cmd_w_ = 0.0;   // [m/s], [rad/s] last command
+  double instr_[2] = {0.0, 0.0};       // [m/s] wheel surface speeds being commanded
+  double omega_[2] = {0.0, 0.0};       // [rad/s] motor velocity targets
+  double q_ref_[2] = {0.0, 0.0};       // [rad] integrated motor targets, anchored near the joint
+  EncoderOdometry encoder_;
+  bool update_due_ = false;
+};
+
+void finish(ResolveContext& ctx) {
+  const PluginConfig& c = ctx.config();
+  for (const char* key : {"leftJoint", "rightJoint"}) {
+    const std::string& jn = c.text(key);
+    const Joint* j = ctx.model().find_joint(jn);
+    if (!j)
+      ctx.fail(key, "joint '" + jn + "' not found in the model (plug-in '" + c.name + "', " + c.filename + ")");
+    if (j->type == JointType::Fixed) ctx.fail(key, "joint '" + jn + "' is fixed; a drive wheel needs a continuous joint");
+  }
+  if (!(c.number("wheelSeparation") > 0)) ctx.fail("wheelSeparation", "must be > 0");
+  if (!(c.number("wheelDiameter") > 0)) ctx.fail("wheelDiameter", "must be > 0");
+  if (c.number("wheelTorque") < 0) ctx.fail("wheelTorque", "must be >= 0");
+  if (c.number("wheelAcceleration") < 0) ctx.fail("wheelAcceleration", "must be >= 0 (0 = unlimited)");
+  if (c.number("updateRate") < 0) ctx.fail("updateRate", "must be >= 0");
+  const std::string& src = c.text("odometrySource");
+  if (src != "world" && src != "encoder") ctx.fail("odometrySource", "'" + src + "' is neither 'world' nor 'encoder'");
+  if (!c.flag("publishTf"))
+    ctx.warn(Severity::Warning, "publish-tf-off", "publishTf",
+             "publishTf false: like gazebo_ros, no /odom is published at all");
+}
+
+}  // namespace
+
+const PluginKind& diff_drive_kind() {
+  static const PluginKind k = [] {
+    PluginKind k;
+    k.name = "diff_drive";
+    k.filenames = {"libgazebo_ros_diff_drive.so"};
+    k.schema = {
+        {"robotNamespace", T, "", ""},
+        {"commandTopic", T, "cmd_vel", ""},
+        {"odometryTopic", T, "odom", ""},
+        {"odometryFrame", Fr, "odom", ""},
+        {"robotBaseFrame", Fr, "base_footprint", ""},
+        {"wheelSeparation", N, "0.34", "m"},
+        {"wheelDiameter", N, "0.15", "m"},
+        {"wheelTorque", N, "5.0", "N m"},
+        {"wheelAcceleration", N, "0", "m/s^2"},
+        {"updateRate", N, "100", "Hz"},
+        {"odometrySource", T, "world", ""},
+        {"publishTf", F, "true", ""},
+        {"publishOdomTF", F, "true", ""},
+        {"publishWheelTF", F, "false", ""},
+        {"publishWheelJointState", F, "false", ""},
+        {"leftJoint", T, "left_joint", ""},
+        {"rightJoint", T, "right_joint", ""},
+        {"rosDebugLevel", T, "na", ""},
+    };
+    k.ignored = {{"legacyMode", ""}, {"broadcastTF", ""}, {"alwaysOn", ""}};
+    k.output_group = "odometry";
+    k.finish = finish;
+    k.make = [](const PluginConfig& c, const std::string& robot, uint64_t) -> std::unique_ptr<Plugin> {
+      return std::make_unique<DiffDrive>(c, robot);
+    };
+    return k;
+  }();
+  return k;
+}
+
+}  // namespace car_sim

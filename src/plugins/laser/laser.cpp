@@ -1,0 +1,156 @@
+// The lidar: N·r rays from min_angle to max_angle inclusive in the sensor's x-y plane, starting at range.min;
+// REP 117 readings; Gaussian noise on in-range beams, clamped to [min, max]. Behaviour per docs/COMPAT.md.
+#include "laser.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace car_sim {
+
+namespace {
+
+constexpr ParamType T = ParamType::Text;
+constexpr ParamType Fr = ParamType::Frame;
+constexpr ParamType N = ParamType::Number;
+constexpr ParamType I = ParamType::Integer;
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+class Laser : public Plugin {
+ public:
+  Laser(const PluginConfig& c, const std::string& robot, uint64_t seed)
+      : link_(c.link), sensor_pose_(c.sensor_pose), rate_(c.number("update_rate")),
+        rng0_(plugin_rng(seed, robot, c.sensor)), rng_(rng0_) {
+    proto_.sensor = c.sensor;
+    const int n = static_cast<int>(c.number("ray/scan/horizontal/samples") * c.number("ray/scan/horizontal/resolution"));
+    const double a = c.number("ray/scan/horizontal/min_angle"), b = c.number("ray/scan/horizontal/max_angle");
+    proto_.angle_min = static_cast<float>(a);
+    proto_.angle_max = static_cast<float>(b);
+    proto_.angle_increment = n > 1 ? static_cast<float>((b - a) / (n - 1)) : 0.f;
+    proto_.range_min = static_cast<float>(c.number("ray/range/min"));
+    proto_.range_max = static_cast<float>(c.number("ray/range/max"));
+    gaussian_ = c.text("ray/noise/type") == "gaussian";
+    mean_ = c.number("ray/noise/mean");
+    stddev_ = c.number("ray/noise/stddev");
+    // ray i at a + i (b - a) / (n - 1), in the sensor's x-y plane
+    dirs_.resize(3 * static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i) {
+      const double th = n > 1 ? a + i * (b - a) / (n - 1) : a;
+      dirs_[3 * i] = static_cast<float>(std::cos(th));
+      dirs_[3 * i + 1] = static_cast<float>(std::sin(th));
+      dirs_[3 * i + 2] = 0.f;
+    }
+    hits_.resize(n);
+  }
+
+  double update_rate() const override { return rate_; }
+  void reset() override { rng_ = rng0_; }
+
+  void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) override {
+    const int n = static_cast<int>(hits_.size());
+    const Eigen::Isometry3d pose = robot.link_pose(link_) * sensor_pose_;
+    const RayScene& scene = ctx.world->rays();
+    const float t_near = proto_.range_min;
+    scene.cast(pose.translation(), pose.linear(), dirs_.data(), n, &t_near, false, proto_.range_max, hits_.data());
+    auto o = std::make_unique<LaserScanOut>(proto_);
+    o->ranges.resize(n);
+    o->intensities.resize(n);
+    std::normal_distribution<double> noise(mean_, stddev_ > 0 ? stddev_ : 1.0);
+    for (int i = 0; i < n; ++i) {
+      const RayHit& h = hits_[i];
+      if (!std::isfinite(h.distance)) {
+        o->ranges[i] = kInf;  // REP 117: no hit within range_max
+        o->intensities[i] = 0.f;
+        continue;
+      }
+      double r = h.distance;
+      // noise on in-range readings only, then clamped to [min, max]
+      if (gaussian_ && stddev_ > 0)
+        r = std::clamp(r + noise(rng_), double(proto_.range_min), double(proto_.range_max));
+      else if (gaussian_)
+        r = std::clamp(r + mean_, double(proto_.range_min), double(proto_.range_max));
+      o->ranges[i] = static_cast<float>(r);
+      o->intensities[i] = static_cast<float>(scene.look(h.body).laser_retro);
+    }
+    out->push_back(std::move(o));
+  }
+
+ private:
+  std::string link_;
+  Eigen::Isometry3d sensor_pose_;
+  double rate_;
+  std::mt19937_64 rng0_, rng_;  // the noise generator as seeded, and as it runs
+  LaserScanOut proto_;  // the fields every scan shares
+  bool gaussian_ = false;
+  double mean_ = 0, stddev_ = 0;
+  std::vector<float> dirs_;
+  std::vector<RayHit> hits_;
+};
+
+void finish(ResolveContext& ctx) {
+  const PluginConfig& c = ctx.config();
+  if (c.number("ray/scan/horizontal/samples") < 1) ctx.fail_sensor("ray/scan/horizontal/samples", "samples must be >= 1");
+  if (!(c.number("ray/scan/horizontal/resolution") > 0))
+    ctx.fail_sensor("ray/scan/horizontal/resolution", "resolution must be > 0");
+  if (c.number("ray/scan/horizontal/min_angle") > c.number("ray/scan/horizontal/max_angle"))
+    ctx.fail_sensor("ray/scan/horizontal/min_angle", "min_angle " + c.text("ray/scan/horizontal/min_angle") +
+                                                         " > max_angle " + c.text("ray/scan/horizontal/max_angle"));
+  if (c.number("ray/range/min") < 0) ctx.fail_sensor("ray/range/min", "min must be >= 0");
+  if (c.number("ray/range/min") >= c.number("ray/range/max"))
+    ctx.fail_sensor("ray/range/min", "min " + c.text("ray/range/min") + " >= max " + c.text("ray/range/max"));
+  const std::string& nt = c.text("ray/noise/type");
+  if (nt != "none" && nt != "gaussian") ctx.fail_sensor("ray/noise/type", "unknown noise type '" + nt + "'");
+  if (c.number("ray/noise/stddev") < 0) ctx.fail_sensor("ray/noise/stddev", "stddev must be >= 0");
+}
+
+}  // namespace
+
+void LaserScanOut::visit(FieldVisitor& v) const {
+  v.number("angle_min", angle_min);
+  v.number("angle_max", angle_max);
+  v.number("angle_increment", angle_increment);
+  v.number("range_min", range_min);
+  v.number("range_max", range_max);
+  v.array("ranges", ranges.data(), {ranges.size()});
+  v.array("intensities", intensities.data(), {intensities.size()});
+}
+
+const PluginKind& laser_kind() {
+  static const PluginKind k = [] {
+    PluginKind k;
+    k.name = "laser";
+    k.filenames = {"libgazebo_ros_laser.so", "libgazebo_ros_gpu_laser.so"};
+    k.model_level = false;
+    k.sensor_types = {"ray", "gpu_ray"};
+    // SDF 1.6 defaults
+    k.sensor_schema = {
+        {"update_rate", N, "0", "Hz"},
+        {"ray/scan/horizontal/samples", I, "640", ""},
+        {"ray/scan/horizontal/resolution", N, "1", ""},
+        {"ray/scan/horizontal/min_angle", N, "0", "rad"},
+        {"ray/scan/horizontal/max_angle", N, "0", "rad"},
+        {"ray/range/min", N, "0", "m"},
+        {"ray/range/max", N, "0", "m"},
+        {"ray/range/resolution", N, "0", "m"},
+        {"ray/noise/type", T, "none", ""},
+        {"ray/noise/mean", N, "0", "m"},
+        {"ray/noise/stddev", N, "0", "m"},
+    };
+    k.schema = {
+        {"robotNamespace", T, "", ""},
+        {"topicName", T, "/world", ""},
+        {"frameName", Fr, "/world", ""},
+    };
+    k.ignored = {{"alwaysOn", ""}, {"updateRate", ""}, {"gaussianNoise", ""}, {"hokuyoMinIntensity", ""}};
+    k.lazy = true;
+    k.output_group = "scans";
+    k.finish = finish;
+    k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {
+      return std::make_unique<Laser>(c, robot, seed);
+    };
+    return k;
+  }();
+  return k;
+}
+
+}  // namespace car_sim

@@ -1,0 +1,120 @@
+// gazebo_ros_p3d (Noetic): bodyName and topicName required; frameName "world" (also "/world", "map", "/map": the
+// world frame) or a link of the same model; xyzOffset added to the position, rpyOffset rotates the orientation;
+// gaussianNoise (stddev) on each twist component; updateRate (0 = every step); published only while listened.
+// fix: relative to a link, upstream composes the rotation the wrong way round and rotates the twist by the
+// link's rotation instead of its inverse; car expresses pose and twist in the link's frame.
+#include "p3d.hpp"
+
+#include "xml_util.hpp"
+
+namespace car_sim {
+
+namespace {
+
+constexpr ParamType T = ParamType::Text;
+constexpr ParamType Fr = ParamType::Frame;
+constexpr ParamType N = ParamType::Number;
+
+bool world_frame(const std::string& f) { return f.empty() || f == "world" || f == "map"; }
+
+class P3d : public Plugin {
+ public:
+  P3d(const PluginConfig& c, const std::string& robot, uint64_t seed)
+      : body_(c.text("bodyName")), frame_(c.text("frameName")), rate_(c.number("updateRate")),
+        noise_(c.number("gaussianNoise")), rng0_(plugin_rng(seed, robot, c.name)), rng_(rng0_) {
+    const auto xyz = detail::parse_numbers(c.text("xyzOffset"), 3);
+    const auto rpy = detail::parse_numbers(c.text("rpyOffset"), 3);
+    offset_xyz_ = Eigen::Vector3d((*xyz)[0], (*xyz)[1], (*xyz)[2]);
+    offset_rot_ = detail::rpy_to_matrix((*rpy)[0], (*rpy)[1], (*rpy)[2]);
+  }
+
+  double update_rate() const override { return rate_; }
+  void reset() override { rng_ = rng0_; }
+
+  void post_physics(const StepContext&, const RobotHandle& robot, OutputQueue* out) override {
+    ModelState s = robot.link_state(body_);
+    if (!world_frame(frame_)) {
+      const ModelState f = robot.link_state(frame_);
+      const Eigen::Matrix3d Rt = f.pose.linear().transpose();
+      s.pose = f.pose.inverse() * s.pose;
+      s.linear = Rt * (s.linear - f.linear - f.angular.cross(s.pose.translation()));
+      s.angular = Rt * (s.angular - f.angular);
+    }
+    auto o = std::make_unique<P3dOut>();
+    o->pose = s.pose;
+    o->pose.translation() += offset_xyz_;
+    o->pose.linear() = offset_rot_ * s.pose.linear();
+    o->linear = s.linear;
+    o->angular = s.angular;
+    if (noise_ > 0) {
+      std::normal_distribution<double> n(0.0, noise_);
+      for (int k = 0; k < 3; ++k) o->linear[k] += n(rng_);
+      for (int k = 0; k < 3; ++k) o->angular[k] += n(rng_);
+    }
+    out->push_back(std::move(o));
+  }
+
+ private:
+  std::string body_, frame_;
+  double rate_, noise_;
+  std::mt19937_64 rng0_, rng_;  // the noise generator as seeded, and as it runs
+  Eigen::Vector3d offset_xyz_;
+  Eigen::Matrix3d offset_rot_;
+};
+
+void finish(ResolveContext& ctx) {
+  const PluginConfig& c = ctx.config();
+  if (c.param("bodyName").from_default) ctx.fail("bodyName", "p3d needs <bodyName>, the link to report");
+  if (!ctx.model().find_link(c.text("bodyName")))
+    ctx.fail("bodyName", "link '" + c.text("bodyName") + "' not found in the model");
+  if (c.param("topicName").from_default) ctx.fail("topicName", "p3d needs <topicName>");
+  const std::string& f = c.text("frameName");
+  if (!world_frame(f) && !ctx.model().find_link(f))
+    ctx.fail("frameName", "'" + f + "' is neither world nor a link of the model");
+  for (const char* key : {"xyzOffset", "rpyOffset"})
+    if (!detail::parse_numbers(c.text(key), 3)) ctx.fail(key, "'" + c.text(key) + "' is not 3 numbers");
+  if (c.number("gaussianNoise") < 0) ctx.fail("gaussianNoise", "must be >= 0");
+  if (c.number("updateRate") < 0) ctx.fail("updateRate", "must be >= 0");
+  ctx.config().link = c.text("bodyName");
+}
+
+}  // namespace
+
+void P3dOut::visit(FieldVisitor& v) const {
+  const Eigen::Vector3d p = pose.translation();
+  v.vector("position", p.data(), 3);
+  const Eigen::Quaterniond q(pose.linear());
+  const double quat[4] = {q.x(), q.y(), q.z(), q.w()};
+  v.vector("orientation", quat, 4);
+  v.vector("linear", linear.data(), 3);
+  v.vector("angular", angular.data(), 3);
+}
+
+const PluginKind& p3d_kind() {
+  static const PluginKind k = [] {
+    PluginKind k;
+    k.name = "p3d";
+    k.filenames = {"libgazebo_ros_p3d.so"};
+    k.schema = {
+        {"robotNamespace", T, "", ""},
+        {"bodyName", T, "", ""},
+        {"topicName", T, "", ""},
+        {"frameName", Fr, "world", ""},
+        {"xyzOffset", T, "0 0 0", "m"},
+        {"rpyOffset", T, "0 0 0", "rad"},
+        {"gaussianNoise", N, "0", "m/s, rad/s"},
+        {"updateRate", N, "0", "Hz"},
+    };
+    k.ignored = {{"alwaysOn", ""}};
+    k.lazy = true;
+    k.output_group = "poses";
+    k.finish = finish;
+    k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {
+      return std::make_unique<P3d>(c, robot, seed);
+    };
+    return k;
+  }();
+  return k;
+}
+
+}  // namespace car_sim

@@ -1,0 +1,172 @@
+// What every plug-in kind shares: the integer-tick schedule, the noise generators, configuration accessors and
+// the resolve context.
+#include "car_sim/plugin.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <stdexcept>
+
+#include "car_sim/drive.hpp"
+#include "xml_util.hpp"
+
+namespace car_sim {
+
+// ---- Schedule -------------------------------------------------------------------------------------------------
+
+namespace {
+
+// The fraction num/den nearest to x with den <= 1e6 (continued fractions), e.g. 181.8181... -> 2000/11.
+void rational(double x, uint64_t* num, uint64_t* den) {
+  uint64_t h0 = 0, h1 = 1, k0 = 1, k1 = 0;  // convergents h/k
+  double r = x;
+  for (int i = 0; i < 40; ++i) {
+    const double a = std::floor(r);
+    const uint64_t ai = static_cast<uint64_t>(a);
+    const uint64_t h2 = ai * h1 + h0, k2 = ai * k1 + k0;
+    if (k2 > 1000000) break;
+    h0 = h1, h1 = h2, k0 = k1, k1 = k2;
+    if (std::abs(static_cast<double>(h1) / static_cast<double>(k1) - x) <= 1e-9 * x) break;
+    if (r - a < 1e-12) break;
+    r = 1.0 / (r - a);
+  }
+  *num = std::max<uint64_t>(h1, 1);
+  *den = std::max<uint64_t>(k1, 1);
+}
+
+}  // namespace
+
+Schedule::Schedule(double rate, double dt, uint64_t start_tick) {
+  if (rate > 0.0 && dt > 0.0) {
+    const double period = 1.0 / (rate * dt);  // [ticks]
+    if (period > 1.0) rational(period, &num_, &den_);
+  }
+  restart(start_tick);
+}
+
+void Schedule::restart(uint64_t start_tick) {
+  start_ = start_tick;
+  k_ = 1;
+  next_ = start_ + (k_ * num_ + den_ - 1) / den_;
+}
+
+void Schedule::advance(uint64_t tick) {
+  ++k_;
+  next_ = start_ + (k_ * num_ + den_ - 1) / den_;
+  if (next_ <= tick) restart(tick);  // after a pause of the world's stepping: no burst
+}
+
+// ---- noise ----------------------------------------------------------------------------------------------------
+
+namespace {
+
+// FNV-1a: a fixed hash, so a plug-in's noise does not depend on the standard library's std::hash.
+uint64_t fnv1a(const std::string& s) {
+  uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : s) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+}  // namespace
+
+std::mt19937_64 plugin_rng(uint64_t seed, const std::string& robot, const std::string& name) {
+  const uint64_t h = fnv1a(robot + "/" + name);
+  std::seed_seq seq{static_cast<uint32_t>(seed), static_cast<uint32_t>(seed >> 32), static_cast<uint32_t>(h),
+                    static_cast<uint32_t>(h >> 32)};
+  return std::mt19937_64(seq);
+}
+
+// ---- PluginConfig ---------------------------------------------------------------------------------------------
+
+const ResolvedParam& PluginConfig::param(const std::string& key) const {
+  for (const auto& p : params)
+    if (p.key == key) return p;
+  throw std::out_of_range("plug-in '" + name + "' has no key '" + key + "'");
+}
+
+bool PluginConfig::has(const std::string& key) const {
+  for (const auto& p : params)
+    if (p.key == key) return true;
+  return false;
+}
+
+const std::string& PluginConfig::text(const std::string& key) const { return param(key).value; }
+
+double PluginConfig::number(const std::string& key) const {
+  const auto v = detail::parse_number(param(key).value);
+  if (!v) throw std::invalid_argument("plug-in '" + name + "' key '" + key + "' is not a number");
+  return *v;
+}
+
+bool PluginConfig::flag(const std::string& key) const {
+  bool b = false;
+  if (!parse_flag(param(key).value, &b))
+    throw std::invalid_argument("plug-in '" + name + "' key '" + key + "' is not a boolean");
+  return b;
+}
+
+bool parse_flag(const std::string& text, bool* value) {
+  std::string t = detail::trim(text);
+  for (auto& c : t) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (t == "true" || t == "1") {
+    *value = true;
+    return true;
+  }
+  if (t == "false" || t == "0") {
+    *value = false;
+    return true;
+  }
+  return false;
+}
+
+// ---- ResolveContext -------------------------------------------------------------------------------------------
+
+ResolveContext::ResolveContext(const RobotModel& model, const PluginSpec& spec, const SensorSpec* sensor,
+                               PluginConfig* config, std::vector<Diagnostic>* diagnostics)
+    : model_(model), spec_(spec), sensor_(sensor), config_(config), diagnostics_(diagnostics) {}
+
+std::string ResolveContext::where(const std::string& key) const {
+  const std::string pl = "plugin[" + spec_.name + "]";
+  const std::string base = sensor_ ? "sensor[" + sensor_->name + "]/" + pl : "gazebo/" + pl;
+  return key.empty() ? base : base + "/" + key;
+}
+
+void ResolveContext::fail(const std::string& key, const std::string& reason) const {
+  throw LoadError(model_.source, spec_.line, where(key), reason);
+}
+
+void ResolveContext::fail_sensor(const std::string& key, const std::string& reason) const {
+  const std::string s = sensor_ ? "sensor[" + sensor_->name + "]" : where("");
+  throw LoadError(model_.source, sensor_ ? sensor_->line : spec_.line, key.empty() ? s : s + "/" + key, reason);
+}
+
+void ResolveContext::warn(Severity severity, const std::string& code, const std::string& key,
+                          const std::string& message) {
+  diagnostics_->push_back({severity, code, where(key), message, spec_.line});
+}
+
+void ResolveContext::set(const std::string& key, const std::string& value) {
+  for (auto& p : config_->params)
+    if (p.key == key) {
+      p.value = value;
+      return;
+    }
+  throw std::out_of_range("plug-in '" + spec_.name + "' has no key '" + key + "'");
+}
+
+// ---- OdometryOut ----------------------------------------------------------------------------------------------
+
+void OdometryOut::visit(FieldVisitor& v) const {
+  const Eigen::Vector3d p = pose.translation();
+  v.vector("position", p.data(), 3);
+  const Eigen::Quaterniond q(pose.linear());
+  const double quat[4] = {q.x(), q.y(), q.z(), q.w()};
+  v.vector("orientation", quat, 4);
+  v.number("yaw", std::atan2(pose.linear()(1, 0), pose.linear()(0, 0)));
+  v.vector("linear", linear.data(), 3);
+  v.vector("angular", angular.data(), 3);
+}
+
+}  // namespace car_sim

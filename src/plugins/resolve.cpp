@@ -1,0 +1,185 @@
+// Resolution of a model's plug-ins through the registry: each <plugin> finds its kind by file name, every
+// schema key gets its value (or its default), values are type-checked, unknown keys are warned with a
+// "did you mean", and the kind's finish() validates against the model. Errors name the plug-in or sensor and key.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "car_sim/plugin.hpp"
+#include "xml_util.hpp"
+
+namespace car_sim {
+
+namespace {
+
+std::string lower_alnum(const std::string& s) {
+  std::string out;
+  for (char c : s)
+    if (std::isalnum(static_cast<unsigned char>(c))) out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+std::string strip_slash(const std::string& s) {
+  size_t i = 0;
+  while (i < s.size() && s[i] == '/') ++i;
+  return s.substr(i);
+}
+
+// Resolves schema keys from params; bad values are load errors naming element and key.
+void resolve_keys(const RobotModel& m, const std::vector<ParamDef>& schema, const ParamList& params,
+                  const std::string& where, int line, std::vector<ResolvedParam>* out) {
+  for (const auto& def : schema) {
+    ResolvedParam rp;
+    rp.key = def.key;
+    rp.unit = def.unit;
+    const std::string* v = find_param(params, def.key);
+    rp.from_default = (v == nullptr);
+    rp.value = v ? *v : def.default_value;
+    const std::string elem = where + "/" + def.key;
+    switch (def.type) {
+      case ParamType::Number:
+        if (!detail::parse_number(rp.value)) throw LoadError(m.source, line, elem, "'" + rp.value + "' is not a number");
+        break;
+      case ParamType::Integer: {
+        const auto n = detail::parse_number(rp.value);
+        if (!n || std::floor(*n) != *n) throw LoadError(m.source, line, elem, "'" + rp.value + "' is not an integer");
+        break;
+      }
+      case ParamType::Flag: {
+        bool b = false;
+        if (!parse_flag(rp.value, &b))
+          throw LoadError(m.source, line, elem, "'" + rp.value + "' is not a boolean (true/false/1/0)");
+        rp.value = b ? "true" : "false";
+        break;
+      }
+      case ParamType::Frame:
+        rp.value = strip_slash(detail::trim(rp.value));
+        break;
+      case ParamType::Text:
+        break;
+    }
+    out->push_back(std::move(rp));
+  }
+}
+
+// Plug-in keys that are in no schema: ignored quietly, with a note, or warned with a suggestion.
+void check_unknown_keys(const PluginKind& kind, const PluginSpec& p, ResolveContext& ctx) {
+  std::set<std::string> known;
+  for (const auto& d : kind.schema) known.insert(d.key);
+  for (const auto& kv : p.params) {
+    const std::string& key = kv.first;
+    if (known.count(key)) continue;
+    const auto it = kind.ignored.find(key);
+    if (it != kind.ignored.end()) {
+      if (!it->second.empty()) ctx.warn(Severity::Info, "key-ignored", key, it->second);
+      continue;
+    }
+    std::string hint;
+    for (const auto& d : kind.schema)
+      if (lower_alnum(d.key) == lower_alnum(key)) hint = "; did you mean <" + std::string(d.key) + ">?";
+    ctx.warn(Severity::Warning, "key-unknown", key, "unknown key <" + key + "> in " + p.filename + " is ignored" + hint);
+  }
+}
+
+// A sensor's own keys; update_rate was read into a field when the sensor was parsed.
+ParamList sensor_params(const SensorSpec& s) {
+  ParamList ps = s.params;
+  std::ostringstream os;
+  os.precision(17);
+  os << s.update_rate;
+  ps.emplace_back("update_rate", os.str());
+  return ps;
+}
+
+PluginConfig resolve_one(const RobotModel& m, const PluginKind& kind, const PluginSpec& p, const SensorSpec* s,
+                         std::vector<Diagnostic>* diags) {
+  PluginConfig c;
+  c.kind = kind.name;
+  c.name = p.name;
+  c.filename = p.filename;
+  if (s) {
+    c.sensor = s->name;
+    c.sensor_type = s->type;
+    c.link = s->link;
+    c.sensor_pose = s->pose;
+  }
+  ResolveContext ctx(m, p, s, &c, diags);
+  if (s) {
+    if (std::find(kind.sensor_types.begin(), kind.sensor_types.end(), s->type) == kind.sensor_types.end())
+      ctx.fail("", p.filename + " needs a sensor of type " + kind.sensor_types.front() + ", not '" + s->type + "'");
+    resolve_keys(m, kind.sensor_schema, sensor_params(*s), "sensor[" + s->name + "]", s->line, &c.params);
+  }
+  resolve_keys(m, kind.schema, p.params, ctx.where(""), p.line, &c.params);
+  check_unknown_keys(kind, p, ctx);
+  if (kind.finish) kind.finish(ctx);
+  return c;
+}
+
+void warn_unknown(std::vector<Diagnostic>* diags, const std::string& where, const PluginSpec& p) {
+  diags->push_back({Severity::Warning, "plugin-unknown", where,
+                    "plug-in '" + p.filename + "' is not simulated by car; ignored", p.line});
+}
+
+}  // namespace
+
+PluginConfig resolve_plugin(const RobotModel& model, const PluginSpec& p, std::vector<Diagnostic>* diags) {
+  const PluginKind* kind = plugin_kind_for_file(p.filename);
+  if (!kind || !kind->model_level)
+    throw LoadError(model.source, p.line, "gazebo/plugin[" + p.name + "]",
+                    "plug-in '" + p.filename + "' is not a robot-level plug-in car simulates");
+  return resolve_one(model, *kind, p, nullptr, diags);
+}
+
+ModelConfig resolve_plugins(const RobotModel& m) {
+  ModelConfig out;
+  for (const auto& p : m.plugins) {
+    const PluginKind* kind = plugin_kind_for_file(p.filename);
+    if (!kind || !kind->model_level) {
+      warn_unknown(&out.diagnostics, "gazebo/plugin[" + p.name + "]", p);
+      continue;
+    }
+    out.plugins.push_back(resolve_one(m, *kind, p, nullptr, &out.diagnostics));
+  }
+  std::set<std::string> sensor_types;
+  for (const PluginKind* k : plugin_kinds()) sensor_types.insert(k->sensor_types.begin(), k->sensor_types.end());
+  for (const auto& s : m.sensors) {
+    if (!sensor_types.count(s.type))
+      out.diagnostics.push_back({Severity::Warning, "sensor-unknown", "sensor[" + s.name + "]",
+                                 "sensor type '" + s.type + "' is not simulated by car; ignored", s.line});
+    if (s.plugins.empty())
+      out.diagnostics.push_back({Severity::Info, "sensor-no-plugin", "sensor[" + s.name + "]",
+                                 "sensor has no plug-in, so nothing is published for it", s.line});
+    for (const auto& p : s.plugins) {
+      const PluginKind* kind = plugin_kind_for_file(p.filename);
+      if (!kind || kind->sensor_types.empty()) {
+        warn_unknown(&out.diagnostics, "sensor[" + s.name + "]/plugin[" + p.name + "]", p);
+        continue;
+      }
+      out.plugins.push_back(resolve_one(m, *kind, p, &s, &out.diagnostics));
+    }
+  }
+  return out;
+}
+
+const std::vector<ParamDef>& plugin_schema(const std::string& kind) {
+  static std::map<std::string, std::vector<ParamDef>> cache;
+  static const std::vector<ParamDef> empty;
+  const PluginKind* k = find_plugin_kind(kind);
+  if (!k) return empty;
+  auto it = cache.find(kind);
+  if (it == cache.end()) {
+    std::vector<ParamDef> all = k->sensor_schema;
+    all.insert(all.end(), k->schema.begin(), k->schema.end());
+    it = cache.emplace(kind, std::move(all)).first;
+  }
+  return it->second;
+}
+
+std::string plugin_kind(const std::string& filename) {
+  const PluginKind* k = plugin_kind_for_file(filename);
+  return k ? k->name : "";
+}
+
+}  // namespace car_sim

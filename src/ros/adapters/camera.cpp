@@ -1,0 +1,28 @@
+// libgazebo_ros_camera.so on ROS: image and camera_info under <robotNamespace>/<cameraName>/.
+#include "../adapter.hpp"
+#include "camera_msgs.hpp"
+
+namespace car_ros {
+
+namespace {
+
+class CameraAdapter : public Adapter {
+ public:
+  std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo&, NodeContext& node) override {
+    return topics_.advertise(node.nh(), p.config);
+  }
+  bool listened() const override { return topics_.listened(); }
+  void publish(const car_sim::Output& out, NodeContext& node) override {
+    const auto& o = static_cast<const car_sim::CameraOut&>(out);
+    topics_.publish(o, node.stamp(o.tick));
+  }
+
+ private:
+  CameraTopics topics_;
+};
+
+}  // namespace
+
+std::unique_ptr<Adapter> make_camera_adapter() { return std::make_unique<CameraAdapter>(); }
+
+}  // namespace car_ros

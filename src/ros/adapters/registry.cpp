@@ -1,0 +1,34 @@
+// The ROS adapters, one line per plug-in kind (the kind's registry name and its adapter's factory).
+#include <cstring>
+
+#include "../adapter.hpp"
+
+namespace car_ros {
+
+std::unique_ptr<Adapter> make_diff_drive_adapter();
+std::unique_ptr<Adapter> make_laser_adapter();
+std::unique_ptr<Adapter> make_camera_adapter();
+std::unique_ptr<Adapter> make_openni_kinect_adapter();
+std::unique_ptr<Adapter> make_imu_adapter();
+std::unique_ptr<Adapter> make_p3d_adapter();
+
+namespace {
+
+const AdapterKind kAdapters[] = {
+    {"diff_drive", make_diff_drive_adapter},
+    {"laser", make_laser_adapter},
+    {"camera", make_camera_adapter},
+    {"openni_kinect", make_openni_kinect_adapter},
+    {"imu", make_imu_adapter},
+    {"p3d", make_p3d_adapter},
+};
+
+}  // namespace
+
+const AdapterKind* find_adapter(const std::string& kind) {
+  for (const auto& a : kAdapters)
+    if (kind == a.kind) return &a;
+  return nullptr;
+}
+
+}  // namespace car_ros

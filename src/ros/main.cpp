@@ -1,0 +1,16 @@
+// sim_node: car's simulator as a ROS node, named gazebo by default so its services live under /gazebo.
+#include <malloc.h>
+
+#include "node.hpp"
+
+int main(int argc, char** argv) {
+  // Camera frames are several MB each: keep freed blocks in the heap instead of returning them to the kernel,
+  // so the next frame does not pay page faults (glibc otherwise mmaps blocks over 128 kB).
+  mallopt(M_MMAP_THRESHOLD, 256 << 20);
+  mallopt(M_TRIM_THRESHOLD, 512 << 20);
+  ros::init(argc, argv, "gazebo");
+  car_ros::SimNode node;
+  if (!node.init()) return 1;
+  node.run();
+  return 0;
+}

@@ -1,0 +1,199 @@
+// The node's loop: pacing against the wall clock (rtf), /clock, the adapters' outputs, joint states and model
+// states, and which lazy plug-ins someone listens to.
+#include "node.hpp"
+
+#include <rosgraph_msgs/Clock.h>
+#include <sensor_msgs/JointState.h>
+
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include "conversions.hpp"
+
+namespace car_ros {
+
+SimNode::SimNode() : nh_(), pnh_("~"), gz_("gazebo") {}
+
+ros::Time SimNode::stamp(uint64_t tick) const { return sim_time(tick, world_->dt()); }
+
+bool SimNode::init() {
+  std::string world_file;
+  pnh_.param<std::string>("world_name", world_file, "");
+  pnh_.param("rtf", rtf_, 1.0);
+  pnh_.param("paused", paused_, false);
+  pnh_.param("clock_rate", clock_rate_, 100.0);
+  pnh_.param("joint_state_rate", joint_state_rate_, 50.0);
+  pnh_.param("model_states_rate", model_states_rate_, 100.0);
+  pnh_.param("solver_iterations", solver_iterations_, 10);
+  int seed = 0;
+  pnh_.param("seed", seed, 0);
+  if (!(rtf_ >= 0.0) || !std::isfinite(rtf_)) {
+    ROS_FATAL("car: parameter ~rtf must be >= 0 (0 = as fast as possible), got %g", rtf_);
+    return false;
+  }
+  car_sim::WorldOptions options;
+  options.solver_iterations = solver_iterations_;
+  options.seed = static_cast<uint64_t>(seed);
+  try {
+    world_ = std::make_unique<car_sim::World>(
+        world_file.empty() ? car_sim::empty_world() : car_sim::load_world_file(world_file), options);
+  } catch (const car_sim::LoadError& e) {
+    ROS_FATAL("car: cannot load the world: %s", e.what());
+    return false;
+  }
+  nh_.setParam("/use_sim_time", true);
+  log_world(world_file);
+  clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  model_states_pub_ = gz_.advertise<car::ModelStates>("model_states", 100);
+  advertise_services();
+  publish_clock();
+  return true;
+}
+
+void SimNode::run() {
+  using clock = std::chrono::steady_clock;
+  auto wall0 = clock::now();
+  uint64_t tick0 = world_->tick();
+  bool was_paused = true;
+  auto last_paused_clock = clock::now();
+  while (ros::ok()) {
+    ros::spinOnce();
+    if (paused_) {
+      was_paused = true;
+      // keep /clock alive while paused, at 10 Hz of wall time
+      if (clock::now() - last_paused_clock > std::chrono::milliseconds(100)) {
+        publish_clock();
+        last_paused_clock = clock::now();
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      continue;
+    }
+    if (was_paused || tick0 > world_->tick()) {
+      // (re)start pacing after a pause or a reset
+      wall0 = clock::now();
+      tick0 = world_->tick();
+      was_paused = false;
+    }
+    world_->step(1);
+    publish_outputs();
+    if (rtf_ > 0.0) {
+      const double sim_elapsed = static_cast<double>(world_->tick() - tick0) * world_->dt();
+      const auto due =
+          wall0 + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(sim_elapsed / rtf_));
+      if (due > clock::now()) std::this_thread::sleep_until(due);
+    }
+  }
+}
+
+uint64_t SimNode::period_of(double rate) const {
+  if (!(rate > 0.0)) return 1;
+  return std::max<uint64_t>(1, std::llround(1.0 / (rate * world_->dt())));
+}
+
+void SimNode::log_world(const std::string& file) {
+  const auto& d = world_->description();
+  int statics = 0;
+  for (const auto& m : d.models) statics += m.is_static ? 1 : 0;
+  ROS_INFO("car: world '%s' from %s: %zu models (%d static), step %g s, gravity (%g %g %g) m/s^2", d.name.c_str(),
+           file.empty() ? "the built-in empty world" : file.c_str(), d.models.size(), statics, d.step_size,
+           d.gravity.x(), d.gravity.y(), d.gravity.z());
+  for (const auto& m : d.models)
+    ROS_INFO("car:   model %-16s %s at (%.3f %.3f %.3f)", m.name.c_str(), m.is_static ? "static " : "dynamic",
+             m.pose.translation().x(), m.pose.translation().y(), m.pose.translation().z());
+  for (const auto& diag : d.diagnostics) ROS_WARN("car: %s: %s", diag.element.c_str(), diag.message.c_str());
+  ROS_INFO("car: %s, real-time factor %s, solver %d iterations", paused_ ? "paused" : "running",
+           rtf_ > 0 ? std::to_string(rtf_).c_str() : "0 (as fast as possible)", solver_iterations_);
+}
+
+void SimNode::publish_clock() {
+  rosgraph_msgs::Clock c;
+  c.clock = stamp(world_->tick());
+  clock_pub_.publish(c);
+}
+
+void SimNode::publish_outputs() {
+  const uint64_t tick = world_->tick();
+  const ros::Time now = stamp(tick);
+  if (tick % period_of(clock_rate_) == 0) publish_clock();
+  for (const auto& o : world_->take_outputs()) {
+    const auto it = route_.find({o->robot, o->plugin});
+    if (it != route_.end()) it->second->publish(*o, *this);
+  }
+  // lazy plug-ins compute only while someone listens; look every 50 steps
+  if (tick % 50 == 0) update_activity();
+  if (tick % period_of(joint_state_rate_) == 0) {
+    for (auto& [name, io] : io_) {
+      if (io.joint_states.getNumSubscribers() == 0) continue;
+      sensor_msgs::JointState js;
+      js.header.stamp = now;
+      for (const auto& j : world_->joint_states(name)) {
+        js.name.push_back(j.name);
+        js.position.push_back(j.position);
+        js.velocity.push_back(j.velocity);
+      }
+      io.joint_states.publish(js);
+    }
+  }
+  if (tick % period_of(model_states_rate_) == 0 && model_states_pub_.getNumSubscribers() > 0) {
+    car::ModelStates ms;
+    for (const auto& name : world_->model_names()) {
+      const car_sim::ModelState s = world_->model_state(name);
+      ms.name.push_back(name);
+      ms.pose.push_back(to_pose(s.pose));
+      ms.twist.push_back(to_twist(s.linear, s.angular));
+    }
+    model_states_pub_.publish(ms);
+  }
+}
+
+void SimNode::update_activity() {
+  for (auto& [name, io] : io_)
+    for (auto& p : io.plugins) {
+      if (!p.info.lazy || !p.adapter) continue;
+      const bool want = p.adapter->listened();
+      if (want == p.active) continue;
+      world_->set_plugin_active(name, p.info.config.name, want);
+      p.active = want;
+    }
+}
+
+void SimNode::make_io(const std::string& name) {
+  const car_sim::RobotInfo& info = world_->robot(name);
+  // ground truth of the root link in the world frame, as gazebo_ros users get from a p3d plug-in
+  car_sim::PluginSpec truth;
+  truth.name = "car_ground_truth";
+  truth.filename = "libgazebo_ros_p3d.so";
+  truth.params = {{"bodyName", info.model.root_link},
+                  {"topicName", "/gazebo/ground_truth/" + name},
+                  {"frameName", "world"},
+                  {"updateRate", std::to_string(model_states_rate_)}};
+  world_->attach_plugin(name, truth);
+  RobotIO io;
+  io.joint_states = nh_.advertise<sensor_msgs::JointState>(topic_in(frame(info.robot_namespace), "joint_states"), 10);
+  for (const auto& p : world_->plugins()) {
+    if (p.robot != name) continue;
+    PluginIO pio;
+    pio.info = p;
+    const AdapterKind* a = find_adapter(p.config.kind);
+    if (!a) {
+      ROS_WARN("car: %s: plug-in '%s' (%s) is simulated but has no ROS adapter; nothing is published for it",
+               name.c_str(), p.config.name.c_str(), p.config.filename.c_str());
+      io.plugins.push_back(std::move(pio));
+      continue;
+    }
+    pio.adapter = a->make();
+    const std::string offers = pio.adapter->setup(p, info, *this);
+    route_[{name, p.config.name}] = pio.adapter.get();
+    if (!p.config.sensor.empty())
+      ROS_INFO("car: %s: sensor '%s' (%s, %s) on %s at %g Hz: %s", name.c_str(), p.config.sensor.c_str(),
+               p.config.sensor_type.c_str(), p.config.filename.c_str(), p.link.c_str(), p.rate, offers.c_str());
+    else if (!offers.empty())
+      ROS_INFO("car: %s: %s '%s' (%s): %s", name.c_str(), p.config.kind.c_str(), p.config.name.c_str(),
+               p.config.filename.c_str(), offers.c_str());
+    io.plugins.push_back(std::move(pio));
+  }
+  io_[name] = std::move(io);
+}
+
+}  // namespace car_ros

@@ -1,0 +1,36 @@
+// The plain camera (libgazebo_ros_camera.so).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "camera/camera.hpp"
+#include "seed_car.hpp"
+
+using namespace car_sim;
+using namespace car_sim::test_support;
+
+TEST(Camera, PlainCameraPluginGivesAnImageOnly) {
+  // libgazebo_ros_camera.so on a camera sensor: an L8 (mono8) image, no depth
+  std::string xml = car_xml(false);
+  xml.insert(xml.rfind("</robot>"),
+             "<gazebo reference=\"camera\"><sensor type=\"camera\" name=\"front\"><update_rate>10</update_rate>"
+             "<camera><horizontal_fov>1.0</horizontal_fov><image><width>64</width><height>48</height>"
+             "<format>L8</format></image><clip><near>0.02</near><far>20</far></clip></camera>"
+             "<plugin name=\"front_camera\" filename=\"libgazebo_ros_camera.so\"><cameraName>front</cameraName>"
+             "<frameName>camera</frameName></plugin></sensor></gazebo>");
+  World w(load_world_file(std::string(CAR_SOURCE_DIR) + "/worlds/box_house.world"));
+  w.spawn(load_urdf_string(xml, "car"), "mycar", at(0.0, 0.059964, 0.0));
+  w.set_sensor_active("mycar", "front_camera", true);
+  w.step(200);
+  const auto images = w.take_outputs<CameraOut>();
+  ASSERT_EQ(images.size(), 2u);  // 10 Hz for 0.2 s
+  const CameraOut& c = images.back();
+  EXPECT_EQ(c.encoding, "mono8");
+  EXPECT_EQ(c.image.size(), 64u * 48u);
+  EXPECT_FALSE(c.has_depth);
+  EXPECT_NEAR(c.f, 64 / (2 * std::tan(0.5)), 1e-9);
+  // the brick wall ahead in the ambient light: luminance of (63, 33, 24)
+  EXPECT_EQ(c.image[24 * 64 + 32], static_cast<uint8_t>(0.299f * 63 + 0.587f * 33 + 0.114f * 24 + 0.5f));
+}
