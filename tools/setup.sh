@@ -11,7 +11,7 @@ DEB_PACKAGES=(
   ros-core-dev ros-base-dev libroscpp-dev python3-rospy python3-roslaunch python3-rostest python3-rosgraph
   python3-rospkg python3-roslib
   liburdfdom-dev liburdfdom-headers-dev libconsole-bridge-dev libtinyxml2-dev libeigen3-dev pybind11-dev
-  libbullet-dev libsdformat-dev libembree-dev
+  libbullet-dev libsdformat-dev libembree-dev libassimp-dev
   libtf2-ros-dev python3-tf2-ros libsensor-msgs-dev python3-sensor-msgs libnav-msgs-dev python3-nav-msgs
   libgeometry-msgs-dev python3-geometry-msgs libstd-srvs-dev python3-std-srvs libros-rosgraph-msgs-dev python3-rosgraph-msgs
   ros-message-generation ros-message-runtime python3-tf2-msgs libtf2-msgs-dev
@@ -65,9 +65,12 @@ set +u
 source /opt/ros/noetic/setup.bash 2>/dev/null || true
 set -u
 cd .ws
+# ccache, where a developer installed it, shares objects between work trees; it is not needed.
+launcher=()
+if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
 if [ ! -f build/Makefile ]; then
   catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON \
-    -DCAR_VENV="$VENV" -j2 > build.log 2>&1 || { tail -n 60 build.log; exit 1; }
+    -DCAR_VENV="$VENV" "${launcher[@]}" -j2 > build.log 2>&1 || { tail -n 60 build.log; exit 1; }
 else
   catkin_make -j2 > build.log 2>&1 || { tail -n 60 build.log; exit 1; }
 fi

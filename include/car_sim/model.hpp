@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -23,14 +24,23 @@ const std::string* find_param(const ParamList& params, const std::string& key);
 enum class ShapeType { Box, Cylinder, Sphere, Mesh, Plane };
 const char* to_string(ShapeType t);
 
+// The triangles of a mesh file, in the file's frame and units (a shape's mesh_scale applies on top).
+struct TriMesh {
+  std::vector<Eigen::Vector3f> vertices;   // [m]
+  std::vector<uint32_t> indices;           // three per triangle
+  std::optional<Eigen::Vector4d> colour;   // the file's first material's diffuse colour, when it has one
+};
+
 // A geometric primitive placed in its link frame.
 struct Shape {
   ShapeType type = ShapeType::Box;
   Eigen::Vector3d size = Eigen::Vector3d::Zero();      // [m] box edge lengths
   double radius = 0.0;                                 // [m] cylinder, sphere
   double length = 0.0;                                 // [m] cylinder, along its local z
-  std::string mesh_uri;                                // mesh file name or package:// URI
+  std::string mesh_uri;                                // mesh file name or package:// URI, as written
   Eigen::Vector3d mesh_scale = Eigen::Vector3d::Ones();
+  std::string mesh_path;                               // the file mesh_uri resolved to ("" until loaded)
+  std::shared_ptr<const TriMesh> mesh;                 // its triangles (null until loaded)
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();   // plane normal, shape frame
   Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  // shape frame in the link frame
 };

@@ -1,4 +1,4 @@
-// Ray casting over the world's collision geometry with Embree 3: boxes and planes as triangles (exact),
+// Ray casting over the world's collision geometry with Embree 3: boxes, planes and meshes as triangles (exact),
 // cylinders and spheres as analytic user geometry (exact), every body an instance whose pose is updated before
 // a cast, so moving bodies are seen where they are. No ROS headers.
 #pragma once
@@ -31,7 +31,7 @@ class RayScene {
   RayScene(const RayScene&) = delete;
   RayScene& operator=(const RayScene&) = delete;
 
-  // A rigid body: primitive shapes placed in the body frame. Meshes are skipped. Returns its index.
+  // A rigid body: shapes placed in the body frame (loaded meshes as their triangles). Returns its index.
   int add_body(const std::vector<std::pair<Shape, Eigen::Isometry3d>>& shapes, const SurfaceLook& look);
   // Body frame in the world; takes effect at the next commit().
   void set_pose(int body, const Eigen::Isometry3d& pose);

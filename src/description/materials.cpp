@@ -45,6 +45,9 @@ Eigen::Vector4d link_colour(const Link& l) {
   if (auto c = gazebo_colour(l.gazebo.material)) return *c;
   for (const auto& v : l.visuals)
     if (v.material.has_rgba) return v.material.rgba;
+  // where the URDF gives no colour, a visual mesh's own material
+  for (const auto& v : l.visuals)
+    if (v.shape.mesh && v.shape.mesh->colour) return *v.shape.mesh->colour;
   return kDefaultColour;
 }
 

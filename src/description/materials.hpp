@@ -25,7 +25,8 @@ std::optional<Eigen::Vector4d> gazebo_colour(const std::string& name);
 Eigen::Vector4d visual_colour(const std::string& script, const std::optional<Eigen::Vector4d>& diffuse,
                               const std::optional<Eigen::Vector4d>& ambient);
 Eigen::Vector4d visual_colour(const WorldVisual& v);
-// RGBA of a URDF link: its <gazebo><material>, else its first visual's colour, else grey.
+// RGBA of a URDF link: its <gazebo><material>, else its first visual's colour, else a visual mesh's own material,
+// else grey.
 Eigen::Vector4d link_colour(const Link& l);
 
 }  // namespace car_sim

@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 
 #include "car_sim/description.hpp"
+#include "car_sim/mesh.hpp"
 #include "xml_util.hpp"
 
 namespace car_sim {
@@ -304,14 +305,18 @@ WorldDescription load_world_file(const std::string& path) {
   sdf::Root root;
   const sdf::Errors errors = root.Load(path, parser_config(path));
   if (!errors.empty()) fail_with(path, errors);
-  return convert(root, path);
+  WorldDescription d = convert(root, path);
+  load_meshes(&d, path.find('/') == std::string::npos ? "." : path.substr(0, path.rfind('/')));
+  return d;
 }
 
 WorldDescription load_world_string(const std::string& xml, const std::string& source_name) {
   sdf::Root root;
   const sdf::Errors errors = root.LoadSdfString(xml, parser_config(""));
   if (!errors.empty()) fail_with(source_name, errors);
-  return convert(root, source_name);
+  WorldDescription d = convert(root, source_name);
+  load_meshes(&d, "");
+  return d;
 }
 
 WorldDescription empty_world() {

@@ -109,6 +109,10 @@ struct Physics::Impl {
   btDbvtBroadphase broadphase;
   btMultiBodyConstraintSolver solver;
   btMultiBodyDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+  // static meshes (declared before the shapes that point into them): Bullet's view of the triangles, and the scaled copies it points into
+  std::vector<std::unique_ptr<btTriangleIndexVertexArray>> mesh_arrays;
+  std::vector<std::unique_ptr<std::vector<btScalar>>> mesh_vertices;
+  std::vector<std::unique_ptr<std::vector<int>>> mesh_indices;
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   std::vector<std::unique_ptr<btCollisionObject>> objects;  // static objects and rigid bodies
   std::vector<std::unique_ptr<btMotionState>> motion_states;
@@ -143,8 +147,9 @@ struct Physics::Impl {
     return s;
   }
 
-  // A Bullet shape for a primitive; nullptr for what Bullet cannot collide here (meshes for now).
-  btCollisionShape* make_shape(const Shape& s) {
+  // A Bullet shape for a primitive or a loaded mesh (a dynamic body's mesh as its convex hull, a static one as its
+  // exact triangles); nullptr for what Bullet cannot collide (planes on moving bodies, meshes never loaded).
+  btCollisionShape* make_shape(const Shape& s, bool dynamic) {
     switch (s.type) {
       case ShapeType::Box: {
         auto* b = new btBoxShape(bt(Eigen::Vector3d(s.size / 2.0)));
@@ -158,16 +163,61 @@ struct Physics::Impl {
       }
       case ShapeType::Sphere:
         return own(new btSphereShape(s.radius));
+      case ShapeType::Mesh:
+        if (!s.mesh) return nullptr;
+        return dynamic ? make_hull(*s.mesh, s.mesh_scale) : make_trimesh(*s.mesh, s.mesh_scale);
       default:
         return nullptr;
     }
+  }
+
+  // The convex hull of a mesh's vertices (scaled), reduced to the hull's own vertices; contacts use its faces.
+  // Bullet inflates a hull by its margin, so a mesh body rests kMargin higher than its triangles say.
+  btCollisionShape* make_hull(const TriMesh& m, const Eigen::Vector3d& scale) {
+    auto* hull = new btConvexHullShape();
+    for (const auto& v : m.vertices)
+      hull->addPoint(btVector3(v.x() * scale.x(), v.y() * scale.y(), v.z() * scale.z()), false);
+    hull->recalcLocalAabb();
+    hull->optimizeConvexHull();
+    hull->initializePolyhedralFeatures();
+    hull->setMargin(kMargin);
+    return own(hull);
+  }
+
+  // A static mesh's exact triangles (scaled), in a bounding-volume tree.
+  btCollisionShape* make_trimesh(const TriMesh& m, const Eigen::Vector3d& scale) {
+    auto verts = std::make_unique<std::vector<btScalar>>();
+    auto idx = std::make_unique<std::vector<int>>(m.indices.begin(), m.indices.end());
+    verts->reserve(3 * m.vertices.size());
+    for (const auto& v : m.vertices) {
+      verts->push_back(v.x() * scale.x());
+      verts->push_back(v.y() * scale.y());
+      verts->push_back(v.z() * scale.z());
+    }
+    btIndexedMesh im;
+    im.m_numTriangles = static_cast<int>(idx->size() / 3);
+    im.m_triangleIndexBase = reinterpret_cast<const unsigned char*>(idx->data());
+    im.m_triangleIndexStride = 3 * sizeof(int);
+    im.m_numVertices = static_cast<int>(verts->size() / 3);
+    im.m_vertexBase = reinterpret_cast<const unsigned char*>(verts->data());
+    im.m_vertexStride = 3 * sizeof(btScalar);
+    im.m_indexType = PHY_INTEGER;
+    im.m_vertexType = sizeof(btScalar) == sizeof(double) ? PHY_DOUBLE : PHY_FLOAT;
+    auto* array = new btTriangleIndexVertexArray();
+    array->addIndexedMesh(im, PHY_INTEGER);
+    mesh_arrays.emplace_back(array);
+    mesh_vertices.push_back(std::move(verts));
+    mesh_indices.push_back(std::move(idx));
+    auto* shape = new btBvhTriangleMeshShape(array, true);
+    shape->setMargin(kMargin);
+    return own(shape);
   }
 
   // One shape, or a compound of several, placed relative to a frame (com for moving bodies).
   btCollisionShape* make_body_shape(const std::vector<std::pair<Shape, Eigen::Isometry3d>>& parts) {
     std::vector<std::pair<btCollisionShape*, Eigen::Isometry3d>> made;
     for (const auto& p : parts)
-      if (btCollisionShape* s = make_shape(p.first)) made.emplace_back(s, p.second);
+      if (btCollisionShape* s = make_shape(p.first, true)) made.emplace_back(s, p.second);
     if (made.empty()) return nullptr;
     if (made.size() == 1 && is_identity(made[0].second)) return made[0].first;
     auto* compound = new btCompoundShape(true, static_cast<int>(made.size()));
@@ -426,7 +476,7 @@ void Physics::Impl::add_world_model(const WorldModelDesc& m) {
           shape = own(new btStaticPlaneShape(bt(n), n.dot(T.translation())));
           T = Eigen::Isometry3d::Identity();
         } else {
-          shape = make_shape(c.shape);
+          shape = make_shape(c.shape, false);
         }
         if (!shape) continue;
         auto* obj = new btCollisionObject();

@@ -52,7 +52,11 @@ py::dict shape(const Shape& s) {
     case ShapeType::Box: d["size"] = vec(s.size); break;
     case ShapeType::Cylinder: d["radius"] = s.radius; d["length"] = s.length; break;
     case ShapeType::Sphere: d["radius"] = s.radius; break;
-    case ShapeType::Mesh: d["uri"] = s.mesh_uri; d["scale"] = vec(s.mesh_scale); break;
+    case ShapeType::Mesh:
+      d["uri"] = s.mesh_uri;
+      d["scale"] = vec(s.mesh_scale);
+      d["path"] = s.mesh_path;
+      break;
     case ShapeType::Plane:
       d["normal"] = vec(s.normal);
       d["size"] = py::cast(std::vector<double>{s.size.x(), s.size.y()});

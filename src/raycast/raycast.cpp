@@ -189,7 +189,13 @@ int RayScene::add_body(const std::vector<std::pair<Shape, Eigen::Isometry3d>>& s
   std::vector<Eigen::Vector3f> verts;
   std::vector<unsigned> idx;
   for (const auto& [s, T] : shapes) {
-    if (s.type == ShapeType::Box || s.type == ShapeType::Plane) {
+    if (s.type == ShapeType::Mesh && s.mesh) {
+      // a mesh's exact triangles, scaled, in the body frame
+      const unsigned base = static_cast<unsigned>(verts.size());
+      for (const auto& v : s.mesh->vertices)
+        verts.push_back((T * Eigen::Vector3d(v.cast<double>().cwiseProduct(s.mesh_scale))).cast<float>());
+      for (uint32_t i : s.mesh->indices) idx.push_back(base + i);
+    } else if (s.type == ShapeType::Box || s.type == ShapeType::Plane) {
       add_triangles(&verts, &idx, s, T);
     } else if (s.type == ShapeType::Sphere || s.type == ShapeType::Cylinder) {
       auto p = std::make_unique<Primitive>();

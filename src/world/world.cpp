@@ -7,11 +7,18 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "car_sim/mesh.hpp"
 #include "physics.hpp"
 
 namespace car_sim {
 
 namespace {
+
+// The folder of a model's source file, where its relative mesh URIs start ("" for text).
+std::string source_dir(const std::string& source) {
+  const auto slash = source.rfind('/');
+  return slash == std::string::npos ? "" : source.substr(0, slash);
+}
 
 // One plug-in instance of a robot.
 struct Instance {
@@ -162,6 +169,7 @@ void World::spawn(const RobotModel& model, const std::string& name, const Eigen:
     for (auto& s : r->info.model.sensors)
       for (auto& p : s.plugins) set_ns(p);
   }
+  load_meshes(&r->info.model, source_dir(model.source));
   r->info.config = resolve_plugins(r->info.model);
   for (const auto& c : r->info.config.plugins) r->plugins.push_back(impl_->make_instance(*r, c));
   for (const auto& i : r->plugins)
