@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Physics steps/s at 1 kHz for the seed car in box_house: car's core (C++ and Python API), car's ROS node,
-and PyBullet (from PyPI) stepping the same expanded URDF and world, all measured in this run.
+MuJoCo (bench_mujoco.py: the same model through MjSpec, validated first) and PyBullet (both from PyPI) stepping
+the same expanded URDF and world, all measured in this run; then the sensors beside PyBullet's.
 
-usage: bench_physics.py [--seconds S]   (run through bench/run.sh, which sets up the environment)
+usage: bench_physics.py [--steps N] [--seconds S] [--no-sensors] [--json FILE]   (through bench/run.sh)
 """
 import argparse
 import math
@@ -45,9 +46,20 @@ def pybullet_world(p, iterations):
         p.setPhysicsEngineParameter(numSolverIterations=iterations)
 
     def quat(rot):
-        import numpy as np
-        from scipy.spatial.transform import Rotation
-        return Rotation.from_matrix(np.array(rot)).as_quat().tolist()
+        """xyzw quaternion of a rotation matrix (Shepperd's method: the largest diagonal term first)."""
+        (a, b, c), (d, e, f), (g, h, i) = rot
+        tr = a + e + i
+        if tr > 0:
+            s = 2 * math.sqrt(tr + 1)
+            return [(h - f) / s, (c - g) / s, (d - b) / s, s / 4]
+        if a >= e and a >= i:
+            s = 2 * math.sqrt(1 + a - e - i)
+            return [s / 4, (b + d) / s, (c + g) / s, (h - f) / s]
+        if e >= i:
+            s = 2 * math.sqrt(1 + e - a - i)
+            return [(b + d) / s, s / 4, (f + h) / s, (c - g) / s]
+        s = 2 * math.sqrt(1 + i - a - e)
+        return [(c + g) / s, (f + h) / s, s / 4, (d - b) / s]
 
     for m in desc['models']:
         for l in m['links']:
@@ -190,27 +202,57 @@ def main():
     ap.add_argument('--steps', type=int, default=30000)
     ap.add_argument('--seconds', type=float, default=5.0, help='wall time to measure the ROS node')
     ap.add_argument('--no-sensors', dest='sensors', action='store_false', help='physics only')
+    ap.add_argument('--json', metavar='FILE', help='also write every figure, the peers\' and the ratios to FILE')
     ap.add_argument('--ros-node', choices=('plain', 'cloud'), help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.ros_node:
         print(ros_node(a.seconds, cloud=a.ros_node == 'cloud'))
         return 0
-    pb_default = pybullet_steps(a.steps)
-    pb_10 = pybullet_steps(a.steps, iterations=10)
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import bench_mujoco
+    # figures under stable keys: [steps/s] for physics, [rays/s], [frames/s], [x real time]
+    fig = {}
+    fig['physics.pybullet_default'] = pybullet_steps(a.steps)
+    fig['physics.pybullet_10it'] = pybullet_steps(a.steps, iterations=10)
+    mj_rest, mj_radius = bench_mujoco.validate()
+    fig['physics.mujoco.rest_height_m'] = mj_rest
+    fig['physics.mujoco.circle_radius_m'] = mj_radius
+    fig['physics.mujoco'] = bench_mujoco.steps_per_second(a.steps)
+    fig['physics.mujoco_sleep'] = bench_mujoco.steps_per_second(a.steps, sleep=True)
+    fig['physics.car_core_cpp'] = core_cpp(a.steps)
+    fig['physics.car_core_python'] = core_python(a.steps)
+    fig['physics.car_ros_node'] = ros_node_subprocess(a.seconds, False)
     rows = [
-        ('car core (C++ bench_core)', core_cpp(a.steps)),
-        ('car core (Python API, World.step)', core_python(a.steps)),
-        ('car ROS node (sim.launch rtf:=0)', ros_node_subprocess(a.seconds, False)),
-        ('PyBullet %s, default solver (50 iterations)' % __import__('pybullet').getAPIVersion(), pb_default),
-        ('PyBullet, 10 solver iterations (as car)', pb_10),
+        ('car core (C++ bench_core)', 'physics.car_core_cpp'),
+        ('car core (Python API, World.step)', 'physics.car_core_python'),
+        ('car ROS node (sim.launch rtf:=0)', 'physics.car_ros_node'),
+        ('MuJoCo %s (implicitfast, sleeping off)' % bench_mujoco.version(), 'physics.mujoco'),
+        ('MuJoCo, island sleeping on', 'physics.mujoco_sleep'),
+        ('PyBullet %s, default solver (50 iterations)' % __import__('pybullet').getAPIVersion(),
+         'physics.pybullet_default'),
+        ('PyBullet, 10 solver iterations (as car)', 'physics.pybullet_10it'),
     ]
+    mj_best = max(fig['physics.mujoco'], fig['physics.mujoco_sleep'])
     print('physics at 1 kHz, seed car (car_camera_lidar04) in box_house, commanded v = 1 m/s, w = 1 rad/s')
-    print('%-48s %12s %10s %14s %14s' % ('', 'steps/s', 'x real', 'vs PyBullet', 'vs PyB 10 it'))
-    for name, rate in rows:
-        print('%-48s %12.0f %10.1f %14.2f %14.2f' % (name, rate, rate / 1000.0, rate / pb_default, rate / pb_10))
+    print('MuJoCo model check (bare ground): base at rest %.4f m (car 0.055), circle radius %.3f m (car 1.000)'
+          % (mj_rest, mj_radius))
+    print('%-48s %12s %8s %10s %10s %10s' % ('', 'steps/s', 'x real', 'vs MuJoCo', 'vs PyB', 'vs PyB 10'))
+    for name, key in rows:
+        rate = fig[key]
+        print('%-48s %12.0f %8.1f %10.2f %10.2f %10.2f' % (name, rate, rate / 1000.0, rate / mj_best,
+                                                          rate / fig['physics.pybullet_default'],
+                                                          rate / fig['physics.pybullet_10it']))
+    fig['ratio.car_core_vs_mujoco_best'] = fig['physics.car_core_cpp'] / mj_best
+    fig['ratio.car_core_vs_pybullet_10it'] = fig['physics.car_core_cpp'] / fig['physics.pybullet_10it']
+    fig['ratio.ros_node_vs_core'] = fig['physics.car_ros_node'] / fig['physics.car_core_cpp']
+    print('%-48s %12.2f' % ('ROS node / core', fig['ratio.ros_node_vs_core']))
     if a.sensors:
         pb = pybullet_sensors()
         c1, c2 = core_sensors(1), core_sensors(2)
+        fig.update({'lidar.car_1core_rays_per_s': c1['rays'], 'lidar.car_2core_rays_per_s': c2['rays'],
+                    'lidar.pybullet_1thread_rays_per_s': pb['rays_1'], 'lidar.pybullet_all_rays_per_s': pb['rays_0'],
+                    'depth.car_1core_fps': c1['fps'], 'depth.car_2core_fps': c2['fps'],
+                    'depth.pybullet_tinyrenderer_fps': pb['camera'], 'full_stack.core_x_real_time': c2['full']})
         print()
         print('sensors, same scene')
         print('%-48s %14s %14s' % ('', 'value', 'vs PyBullet'))
@@ -223,7 +265,16 @@ def main():
         print('%-48s %14.1f %14s' % ('getCameraImage 640x480 (TinyRenderer): PyBullet', pb['camera'], '1'))
         print('%-48s %13.1fx' % ('full stack in the core (1 kHz, lidar 5.5 Hz, depth 10 Hz)', c2['full']))
         ros = ros_node_subprocess(a.seconds, True) / 1000.0
+        fig['full_stack.ros_cloud_x_real_time'] = ros
         print('%-48s %13.1fx  = %.1f clouds/s published' % ('ROS node, /scan and 20 Hz cloud subscribed', ros, ros * 20))
+    if a.json:
+        import json
+        import platform
+        fig['machine'] = {'cpus': os.cpu_count(), 'platform': platform.platform(),
+                          'load_average_1min': os.getloadavg()[0]}
+        with open(a.json, 'w') as f:
+            json.dump(fig, f, indent=1, sort_keys=True)
+        print('figures written to %s' % a.json)
     return 0
 
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Runs car's benchmarks beside their peer (PyBullet from PyPI, installed into .venv on first use).
+# Runs car's benchmarks beside their peer (PyBullet and MuJoCo from PyPI, installed into .venv on first use).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../tools/env.sh"
-"$ROOT/.venv/bin/python" -c "import pybullet, scipy" 2>/dev/null || \
+"$ROOT/.venv/bin/python" -c "import pybullet, mujoco" 2>/dev/null || \
   "$ROOT/.venv/bin/pip" install -q --disable-pip-version-check -r "$ROOT/bench/requirements.txt"
 "$ROOT/.venv/bin/python" "$ROOT/bench/bench_physics.py" "$@" 2>&1 | grep -v "^pybullet build time\|b3Warning\|No inertial data\|^base_footprint"
