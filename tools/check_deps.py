@@ -42,6 +42,8 @@ PY_DEBIAN = {
     'actionlib_msgs': ('actionlib_msgs', 'python3-actionlib-msgs'),
     'dynamic_reconfigure': ('dynamic_reconfigure', 'python3-dynamic-reconfigure'),
     'numpy': ('python3-numpy', 'python3-numpy'),
+    'matplotlib': ('python3-matplotlib', 'python3-matplotlib'),
+    'tqdm': ('python3-tqdm', 'python3-tqdm'),
     'yaml': ('python3-yaml', 'python3-yaml'),
     'pytest': ('python3-pytest', 'python3-pytest'),
     'selenium': ('python3-selenium', 'python3-selenium'),
@@ -58,9 +60,7 @@ PY_PYPI = {
     'ray': 'ray',
     'pyarrow': 'pyarrow',
     'pandas': 'pandas',
-    'tqdm': 'tqdm',
     'gymnasium': 'gymnasium',
-    'matplotlib': 'matplotlib',
     'viser': 'viser',
     'psutil': 'psutil',
 }

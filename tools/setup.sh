@@ -8,6 +8,7 @@ cd "$ROOT"
 
 DEB_PACKAGES=(
   build-essential cmake pkg-config catkin python3-catkin-pkg python3-venv python3-pip python3-dev python3-numpy python3-yaml
+  python3-matplotlib python3-tqdm
   ros-core-dev ros-base-dev libroscpp-dev python3-rospy python3-roslaunch python3-rostest python3-rosgraph
   python3-rospkg python3-roslib
   liburdfdom-dev liburdfdom-headers-dev libconsole-bridge-dev libtinyxml2-dev libeigen3-dev pybind11-dev
@@ -47,6 +48,8 @@ if [ "$(cat "$STAMP" 2>/dev/null)" != "$want" ]; then
   "$VENV/bin/pip" install -q --disable-pip-version-check -r requirements.txt
   echo "$want" > "$STAMP"
 fi
+# `car COMMAND` (car batch, ...) on PATH wherever the venv is (the workspace's env hook puts it first)
+ln -sfn "$ROOT/scripts/car" "$VENV/bin/car"
 
 # catkin workspace: .ws/src/car holds a link to each top-level entry of this repository (not a link to the
 # repository itself: rosrun and roslaunch search a package's folder following links, and would find .ws inside

@@ -3,6 +3,8 @@
   world_tool flatten WORLD [-o OUT]
   world_tool check WORLD [--json] [--strict]
   world_tool map WORLD [-o BASENAME] [--resolution 0.05] [--z-min 0.05] [--z-max 0.5] [--publish] [--frame odom]
+  world_tool plot WORLD [--runs OUT/runs.parquet] [-o runs.png]
+  world_tool plot --runs OUT/runs.parquet --sweep PARAM --metric METRIC [-o sweep.png]
 """
 from __future__ import annotations
 
@@ -73,6 +75,25 @@ def cmd_map(a) -> int:
     return 0
 
 
+def cmd_plot(a) -> int:
+    from car import world_plot
+    try:
+        if a.sweep:
+            if not a.runs:
+                raise ValueError('--sweep needs --runs')
+            n = world_plot.plot_sweep(a.runs, a.sweep, a.metric, a.output or 'sweep.png')
+            print('world_tool: %s: %s against %s, %d runs' % (a.output or 'sweep.png', a.metric, a.sweep, n))
+            return 0
+        if not a.world:
+            raise ValueError('a world file is needed for the top view')
+        n, size = world_plot.plot_runs(a.world, a.runs, a.output or 'runs.png')
+        print('world_tool: %s: %d x %d px, %d trajectories' % (a.output or 'runs.png', size[0], size[1], n))
+        return 0
+    except (world_tools.WorldError, ValueError, OSError) as e:
+        print('world_tool: error: %s' % e, file=sys.stderr)
+        return 2
+
+
 def main(argv=None) -> int:
     import rospy
     argv = rospy.myargv(sys.argv if argv is None else ['world_tool'] + list(argv))[1:]
@@ -95,8 +116,14 @@ def main(argv=None) -> int:
     m.add_argument('--publish', action='store_true', help='also publish it latched as nav_msgs/OccupancyGrid')
     m.add_argument('--topic', default='/map')
     m.add_argument('--frame', default='odom', help='frame of the published map (default odom, the simulator world)')
+    p = sub.add_parser('plot', help='the world from above with batch runs\' trajectories, or a sweep plot')
+    p.add_argument('world', nargs='?')
+    p.add_argument('--runs', help='runs.parquet written by car batch (trajectories.parquet beside it)')
+    p.add_argument('--sweep', help='plot METRIC against this swept parameter instead')
+    p.add_argument('--metric', default='distance', help='a runs.parquet column (default distance)')
+    p.add_argument('-o', '--output', help='PNG to write (default runs.png / sweep.png)')
     a = ap.parse_args(argv)
-    return {'flatten': cmd_flatten, 'check': cmd_check, 'map': cmd_map}[a.command](a)
+    return {'flatten': cmd_flatten, 'check': cmd_check, 'map': cmd_map, 'plot': cmd_plot}[a.command](a)
 
 
 if __name__ == '__main__':
