@@ -121,7 +121,21 @@ def _explain(e: Exception, path: str, xacro_mod) -> ExpandError:
         missing = m.group(1)
         base = os.path.basename(missing)
         return ExpandError(culprit, _line_of(culprit, base), 'included file not found: %s' % missing)
+    # xacro.fatal() and other evaluation errors: the line of the expression, where it is written once
+    m = re.search(r"when evaluating expression '(.*?)'(?: when evaluating|$)", msg)
+    if m:
+        lines = _lines_of(culprit, '${%s}' % m.group(1))
+        if len(lines) == 1:
+            return ExpandError(culprit, lines[0], msg)
     return ExpandError(culprit, None, msg or repr(e))
+
+
+def _lines_of(path: str | None, needle: str) -> list:
+    """Every line of a file that contains needle."""
+    if not path or not needle or not os.path.isfile(path):
+        return []
+    with open(path, encoding='utf-8', errors='replace') as f:
+        return [n for n, text in enumerate(f, 1) if needle in text]
 
 
 USAGE = """usage: xacro [options] FILE [name:=value ...]
