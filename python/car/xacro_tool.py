@@ -118,9 +118,11 @@ def _explain(e: Exception, path: str, xacro_mod) -> ExpandError:
         return ExpandError(culprit, _line_of(culprit, short), "undefined macro '%s'" % short)
     m = re.search(r'No such file or directory: (\S+)', msg)
     if m:
-        missing = m.group(1)
+        missing = m.group(1).strip("'\"")
         base = os.path.basename(missing)
-        return ExpandError(culprit, _line_of(culprit, base), 'included file not found: %s' % missing)
+        # xacro.load_yaml() reads files too; its failure is reported while evaluating the expression
+        what = 'YAML file' if 'load_yaml(' in msg else 'included file'
+        return ExpandError(culprit, _line_of(culprit, base), '%s not found: %s' % (what, missing))
     # xacro.fatal() and other evaluation errors: the line of the expression, where it is written once
     m = re.search(r"when evaluating expression '(.*?)'(?: when evaluating|$)", msg)
     if m:

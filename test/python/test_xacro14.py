@@ -304,3 +304,18 @@ def test_namespaced_macro_call_parameters_read_the_callers_scope():
     # ('caller'); noetic-devel's 1.14.17 evaluates it in the macro's namespace ('inner'), checked by running
     # noetic-devel's src/xacro on this fixture. See docs/xacro14.md.
     assert attr(expand('ns_scope.xacro'), 'show', 'v') == 'caller'
+
+
+# ---- bad YAML input ----------------------------------------------------------------------------------
+
+def test_missing_yaml_file_names_the_loading_line():
+    e = expand_error('missing_yaml.xacro')
+    assert (e.file, e.line) == (fx('missing_yaml.xacro'), 3)
+    assert e.reason == 'YAML file not found: %s' % fx('no_such_limits.yaml')
+
+
+def test_degrees_tag_with_a_bad_expression_names_it():
+    # bad_degrees.yaml: angle: !degrees 90 deg
+    e = expand_error('bad_degrees.xacro')
+    assert (e.file, e.line) == (fx('bad_degrees.xacro'), 3)
+    assert e.reason.startswith('invalid expression: 90 deg')
