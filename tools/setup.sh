@@ -50,6 +50,11 @@ if [ "$(cat "$STAMP" 2>/dev/null)" != "$want" ]; then
 fi
 # `car COMMAND` (car batch, ...) on PATH wherever the venv is (the workspace's env hook puts it first)
 ln -sfn "$ROOT/scripts/car" "$VENV/bin/car"
+# PyPI xacro 2.x's own `xacro` command finds packages through ament (ROS 2): the venv's `xacro` (first on PATH
+# once .ws/devel/setup.bash is sourced) runs car's instead, Noetic's dialect with catkin's $(find).
+printf '#!%s\nimport sys\nsys.path.insert(0, %s)\nfrom car.xacro_tool import main\nsys.exit(main())\n' \
+  "$VENV/bin/python3" "'$ROOT/python'" > "$VENV/bin/xacro"
+chmod +x "$VENV/bin/xacro"
 
 # catkin workspace: .ws/src/car holds a link to each top-level entry of this repository (not a link to the
 # repository itself: rosrun and roslaunch search a package's folder following links, and would find .ws inside
