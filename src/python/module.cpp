@@ -582,4 +582,12 @@ PYBIND11_MODULE(_core, m) {
         return out;
       },
       "Every plug-in kind of the registry: name, Gazebo file names, sensor types.");
+  m.def(
+      "step_worlds",
+      [](const std::vector<World*>& worlds, int n) {
+        // one call for a whole vector of worlds (car.gym's vector env): no Python between them, the GIL released
+        py::gil_scoped_release release;
+        for (World* w : worlds) w->step(n);
+      },
+      py::arg("worlds"), py::arg("n") = 1, "Advance each world n steps, one after the other, without the GIL.");
 }
