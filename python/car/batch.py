@@ -8,7 +8,8 @@ instance on all cores is started unless --address names a running cluster (`ray 
 worker died is retried (--retries); finished runs are kept in OUTDIR/parts/ so a second invocation only runs what
 is missing (--no-resume starts over). At the end: OUTDIR/runs.parquet (one row per run and robot: final pose,
 distance, collisions, min lidar distance, status, wall time, the swept values) and OUTDIR/trajectories.parquet
-(run, robot, t, x, y, yaw), and a summary on the terminal. --serial runs in this process without Ray.
+(run, robot, t, x, y, yaw), OUTDIR/runs.png (the trajectories over the world's footprint, as `world_tool plot`)
+and a summary on the terminal. --serial runs in this process without Ray.
 Exit status: 0 all runs ok, 1 some runs failed, 2 the scenario is invalid.
 """
 from __future__ import annotations
@@ -171,6 +172,7 @@ def main(argv=None) -> int:
     ap.add_argument('--no-resume', dest='resume', action='store_false', help='run every run again')
     ap.add_argument('--serial', action='store_true', help='run in this process, without Ray')
     ap.add_argument('--quiet', action='store_true', help='no progress bar')
+    ap.add_argument('--no-plot', action='store_true', help='do not draw OUTDIR/runs.png')
     a = ap.parse_args(argv)
     try:
         runs = scenario.load(a.scenario)
@@ -183,6 +185,15 @@ def main(argv=None) -> int:
     paths = write_parquet(results, outdir)
     print(summary(results))
     print('wall time %.1f s; results: %s, %s' % (time.perf_counter() - t0, paths[0], paths[1]))
+    world = runs[0]['scenario']['world']
+    if world and not a.no_plot:
+        from car import world_plot
+        png = os.path.join(outdir, 'runs.png')
+        try:
+            world_plot.plot_runs(world, paths[0], png)
+            print('plot: %s' % png)
+        except ValueError as e:  # a world with nothing to slice (ground only)
+            print('plot: not drawn (%s)' % e)
     return 0 if all(r['status'] == 'ok' for r in results) else 1
 
 
