@@ -32,21 +32,40 @@ def _load_controller(spec: str):
     return getattr(mod, func)
 
 
+# Expanded models per worker process: (path, modification time, xacro args) -> URDF text. A sweep that does not
+# change the model expands it once per worker, not once per run.
+_MODELS = {}
+
+
 def _model_text(robot: dict) -> str:
-    if robot['model'].endswith('.xacro'):
-        from car import xacro_tool
-        return xacro_tool.expand(robot['model'], robot['xacro_args'])
-    with open(robot['model'], encoding='utf-8') as f:
-        return f.read()
+    import os
+    key = (robot['model'], os.path.getmtime(robot['model']), json.dumps(robot['xacro_args'], sort_keys=True))
+    if key not in _MODELS:
+        if robot['model'].endswith('.xacro'):
+            from car import xacro_tool
+            _MODELS[key] = xacro_tool.expand(robot['model'], robot['xacro_args'])
+        else:
+            with open(robot['model'], encoding='utf-8') as f:
+                _MODELS[key] = f.read()
+    return _MODELS[key]
+
+
+_GROUNDS = {}
 
 
 def _ground_models(world_file):
-    """Names of the world's models that hold a plane (the ground): touching them is not a collision."""
+    """Names of the world's models that hold a plane (the ground): touching them is not a collision (cached per
+    worker process and file version)."""
     if not world_file:
         return {'ground_plane'}
-    from car import _core
-    desc = _core.load_world_file(world_file)
-    return {m['name'] for m in desc['models'] if any(c['type'] == 'plane' for l in m['links'] for c in l['collisions'])}
+    import os
+    key = (world_file, os.path.getmtime(world_file))
+    if key not in _GROUNDS:
+        from car import _core
+        desc = _core.load_world_file(world_file)
+        _GROUNDS[key] = {m['name'] for m in desc['models']
+                         if any(c['type'] == 'plane' for l in m['links'] for c in l['collisions'])}
+    return _GROUNDS[key]
 
 
 def _yaw(q):
