@@ -17,7 +17,7 @@ class TeleopTest(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node('test_teleop')
         cls.msgs = []
-        rospy.Subscriber('/cmd_vel', Twist, cls.msgs.append, queue_size=None)
+        cls.sub = rospy.Subscriber('/cmd_vel', Twist, cls.msgs.append, queue_size=None)
 
     def start(self):
         self.master, self.slave = os.openpty()
@@ -53,7 +53,10 @@ class TeleopTest(unittest.TestCase):
 
     def test_keys_publish_twists_and_the_terminal_is_restored(self):
         self.start()
-        time.sleep(1.0)  # let the subscription connect
+        # our subscription has connected to the teleop's publisher
+        deadline = time.time() + 60
+        while self.sub.get_num_connections() == 0 and time.time() < deadline:
+            time.sleep(0.05)
         (fwd,) = self.send('i', 1)
         self.assertEqual((fwd.linear.x, fwd.angular.z), (0.5, 0.0))
         (left,) = self.send('j', 1)
