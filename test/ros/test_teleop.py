@@ -5,7 +5,9 @@ import subprocess
 import termios
 import time
 import unittest
+import xmlrpc.client
 
+import rosgraph
 import rospy
 import rostest
 from geometry_msgs.msg import Twist
@@ -30,6 +32,14 @@ class TeleopTest(unittest.TestCase):
                                           not self.msgs_pub_connected()):
             time.sleep(0.05)
 
+    def teleop_sends_to_us(self):
+        master = rosgraph.Master(rospy.get_name())
+        for node in next((n for t, n in master.getSystemState()[0] if t == '/cmd_vel'), []):
+            info = xmlrpc.client.ServerProxy(master.lookupNode(node)).getBusInfo(rospy.get_name())[2]
+            if any(c[1] == rospy.get_name() and c[2] == 'o' and c[4] == '/cmd_vel' for c in info):
+                return True
+        return False
+
     def msgs_pub_connected(self):
         return any(n for n in rospy.get_published_topics() if n[0] == '/cmd_vel')
 
@@ -53,9 +63,10 @@ class TeleopTest(unittest.TestCase):
 
     def test_keys_publish_twists_and_the_terminal_is_restored(self):
         self.start()
-        # our subscription has connected to the teleop's publisher
+        # the teleop's publisher has added its connection to us (its own bus info says so): a key sent before that
+        # is published to nobody
         deadline = time.time() + 60
-        while self.sub.get_num_connections() == 0 and time.time() < deadline:
+        while not self.teleop_sends_to_us() and time.time() < deadline:
             time.sleep(0.05)
         (fwd,) = self.send('i', 1)
         self.assertEqual((fwd.linear.x, fwd.angular.z), (0.5, 0.0))
