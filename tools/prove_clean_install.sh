@@ -91,6 +91,13 @@ bootstrap() {
   cp /etc/resolv.conf "$R/etc/resolv.conf"
   printf '127.0.0.1 localhost\n127.0.1.1 car-clean\n::1 localhost ip6-localhost ip6-loopback\n' > "$R/etc/hosts"
   echo car-clean > "$R/etc/hostname"
+  # pip inside the root trusts what this machine's pip trusts (a machine that reaches PyPI through a TLS proxy has
+  # that proxy's CA there); nothing else of the host's Python set-up is copied
+  local ca="${PIP_CERT:-$(pip3 config get global.cert 2>/dev/null || true)}"
+  if [ -n "$ca" ] && [ -f "$ca" ]; then
+    cp "$ca" "$R/etc/prove-host-ca.crt"
+    printf '[global]\ncert = /etc/prove-host-ca.crt\n' > "$R/etc/pip.conf"
+  fi
   printf '#!/bin/sh\nexit 101\n' > "$R/usr/sbin/policy-rc.d"
   chmod +x "$R/usr/sbin/policy-rc.d"
 }
