@@ -1,6 +1,7 @@
 // sim_node: car's simulator as a ROS node, named gazebo by default so its services live under /gazebo.
 #include <malloc.h>
 
+#include "master_watch.hpp"
 #include "node.hpp"
 
 int main(int argc, char** argv) {
@@ -11,6 +12,8 @@ int main(int argc, char** argv) {
   ros::init(argc, argv, "gazebo");
   car_ros::SimNode node;
   if (!node.init()) return 1;
+  // a restarted roscore gets this node's topics and services again, and the node's own /use_sim_time
+  car_ros::MasterWatch watch([] { ros::param::set("/use_sim_time", true); });
   node.run();
   return 0;
 }

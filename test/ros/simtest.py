@@ -19,6 +19,12 @@ class Recorder:
 
     def _cb(self, msg):
         with self.lock:
+            # A stamp earlier than the last one starts a new run (a reset put sim time back to 0): drop the old
+            # run's messages. Messages published just before a pause can arrive after a test cleared the records;
+            # kept, a stale message stamped late in the old run would satisfy until() at once.
+            header = getattr(msg, 'header', None)
+            if header is not None and self.msgs and header.stamp < self.msgs[-1].header.stamp:
+                self.msgs.clear()
             self.msgs.append(msg)
 
     def wait_connected(self, timeout=30.0):
@@ -53,8 +59,10 @@ def command(v, w, topic='/cmd_vel'):
     pub = rospy.Publisher(topic, Twist, queue_size=None, latch=True)
     msg = Twist()
     msg.linear.x, msg.angular.z = v, w
-    deadline = time.time() + 30
-    while pub.get_num_connections() == 0 and time.time() < deadline:
+    deadline = time.time() + 60
+    while pub.get_num_connections() == 0:
+        if time.time() > deadline:  # a latched message would reach it late, after the run began
+            raise AssertionError('nobody subscribes to %s' % topic)
         time.sleep(0.05)
     pub.publish(msg)
     return pub
@@ -63,6 +71,29 @@ def command(v, w, topic='/cmd_vel'):
 def call(name, srv_type=Empty, *args):
     rospy.wait_for_service(name, timeout=30)
     return rospy.ServiceProxy(name, srv_type)(*args)
+
+
+def wait_for(what, condition, timeout=120.0):
+    """Polls condition() until it is true (returned). The bound is wall time against a hang, not a speed limit:
+    tests wait on conditions, never for a while."""
+    import time
+    deadline = time.time() + timeout
+    while True:
+        value = condition()
+        if value:
+            return value
+        if time.time() > deadline:
+            raise AssertionError('%s: not within %.0f s' % (what, timeout))
+        time.sleep(0.02)
+
+
+def lookup(buf, target, source, stamp, timeout=120.0):
+    """A transform from a tf2 buffer once it has arrived. lookup_transform's own timeout counts sim time, which
+    stands still while the simulation is paused (a hang) and races ahead of the wall clock at rtf 0 (a spurious
+    failure under load); this waits on the buffer in wall time instead."""
+    wait_for('transform %s -> %s at %.3f' % (target, source, stamp.to_sec()),
+             lambda: buf.can_transform(target, source, stamp), timeout)
+    return buf.lookup_transform(target, source, stamp)
 
 
 def xy(msg):

@@ -4,6 +4,7 @@ import math
 import time
 import unittest
 
+import rosgraph
 import rospy
 import rostest
 import tf2_ros
@@ -24,8 +25,8 @@ class DriveTest(unittest.TestCase):
         cls.truth = Recorder(TRUTH)
         cls.truth.wait_connected()
 
-    def start(self, v, w, x=0.0, y=0.0, yaw=0.0):
-        """Pause, reset to t = 0, place the car, command (v, w), clear the records, run."""
+    def start(self, v, w, x=0.0, y=0.0, yaw=0.0, run=True):
+        """Pause, reset to t = 0, place the car, command (v, w), clear the records, run (unless run is False)."""
         call('/gazebo/pause_physics')
         call('/gazebo/reset_simulation')
         if (x, y, yaw) != (0.0, 0.0, 0.0):
@@ -36,7 +37,8 @@ class DriveTest(unittest.TestCase):
         self.pub = command(v, w)
         with self.truth.lock:
             self.truth.msgs.clear()
-        call('/gazebo/unpause_physics')
+        if run:
+            call('/gazebo/unpause_physics')
 
     def test_seed_command_drives_a_circle_of_radius_v_over_w(self):
         self.start(1.0, 1.0)
@@ -66,7 +68,7 @@ class DriveTest(unittest.TestCase):
         buf = tf2_ros.Buffer()
         tf2_ros.TransformListener(buf)
         # base_footprint on the ground + base_link2base_footprint z = base_length / 2 + lidi = 0.055
-        tf = buf.lookup_transform('odom', 'base_link', rospy.Time(0), rospy.Duration(30))
+        tf = simtest.lookup(buf, 'odom', 'base_link', rospy.Time(0))
         self.assertAlmostEqual(tf.transform.translation.z, 0.055, delta=0.002)
 
     def test_wall_stops_the_car(self):
@@ -78,8 +80,14 @@ class DriveTest(unittest.TestCase):
 
     def test_driving_into_unit_box_pushes_it(self):
         get = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
-        self.start(0.5, 0.0, x=-3.5, y=-2.00353, yaw=math.pi)
+        # the box's start is read while paused: read after unpausing, a test starved of CPU would see it
+        # pushed already (at rtf 0 the simulation runs ahead of the test)
+        self.start(0.5, 0.0, x=-3.5, y=-2.00353, yaw=math.pi, run=False)
         x0 = get('unit_box_0', '').pose.position.x
+        self.assertAlmostEqual(x0, -4.96407, delta=1e-3)  # box_house's <state>
+        call('/gazebo/unpause_physics')
+        # the car's front (0.1 m ahead of x = -3.5) meets the box's face (-4.964 + 0.5) after ~0.86 m, at ~1.9 s;
+        # pushing at 0.5 m/s until 5 s moves it ~1.5 m
         self.truth.until(5.0)
         call('/gazebo/pause_physics')
         self.assertLess(get('unit_box_0', '').pose.position.x, x0 - 0.5)
@@ -87,15 +95,14 @@ class DriveTest(unittest.TestCase):
     def test_nan_command_is_rejected_with_a_warning(self):
         warnings = []
         sub = rospy.Subscriber('/rosout', Log, lambda m: warnings.append(m.msg) if m.level == Log.WARN else None)
-        deadline = time.time() + 10
-        while sub.get_num_connections() == 0 and time.time() < deadline:
-            time.sleep(0.05)
+        # connected to every node that logs (the simulator among them), not only to the first
+        master = rosgraph.Master(rospy.get_name())
+        loggers = next(nodes for topic, nodes in master.getSystemState()[0] if topic == '/rosout')
+        simtest.wait_for('a connection to every /rosout', lambda: sub.get_num_connections() >= len(loggers))
         self.start(float('nan'), 1.0)
         msgs = self.truth.until(2.0)
         self.assertLess(math.dist(xy(msgs[0]), xy(msgs[-1])), 1e-3)  # it never reached the physics
-        deadline = time.time() + 10
-        while not any('non-finite' in w for w in warnings) and time.time() < deadline:
-            time.sleep(0.05)
+        simtest.wait_for('a non-finite warning', lambda: any('non-finite' in w for w in warnings))
         sub.unregister()
         self.assertTrue(any('rejected a cmd_vel with a non-finite value' in w for w in warnings), warnings)
 

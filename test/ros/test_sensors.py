@@ -2,7 +2,6 @@
 """rostest: /scan and the Kinect's topics in box_house, against values worked out from the world's geometry."""
 import math
 import os
-import time
 import unittest
 
 import numpy as np
@@ -15,6 +14,7 @@ from car.msg import ModelState
 from car.srv import SetModelState
 from sensor_msgs.msg import CameraInfo, Image, LaserScan, PointCloud2
 
+import simtest
 from simtest import Recorder, call
 
 WALL2_X = 4.44857 - 0.075  # Wall_2's inner face [m]
@@ -82,7 +82,9 @@ class SensorsTest(unittest.TestCase):
         for r in (self.scan, self.depth, self.cloud, self.info):
             with r.lock:
                 r.msgs.clear()
-        time.sleep(0.6)  # the simulator notices the subscribers every 50 steps; give the clock a moment
+        # the reset's /clock (t = 0, sent every 0.1 s of wall time while paused) must reach this node before the
+        # run's first messages: a later jump back in time would make the TF listener clear its buffer
+        simtest.wait_for('the clock back at 0', lambda: rospy.get_rostime().to_sec() == 0.0)
         call('/gazebo/unpause_physics')
         for r in (self.scan, self.depth, self.cloud):
             r.until(until)
@@ -145,7 +147,7 @@ class SensorsTest(unittest.TestCase):
         xyz = np.stack([pts['x'], pts['y'], pts['z']], axis=1).astype(float)
         ok = np.isfinite(xyz[:, 2])
         # through TF (odom -> ... -> support -> support_depth, the static transform) into the world
-        tf = self.tf.lookup_transform('odom', m.header.frame_id, m.header.stamp, rospy.Duration(30))
+        tf = simtest.lookup(self.tf, 'odom', m.header.frame_id, m.header.stamp)
         q, t = tf.transform.rotation, tf.transform.translation
         x, y, z, w = q.x, q.y, q.z, q.w
         R = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
@@ -162,9 +164,7 @@ class SensorsTest(unittest.TestCase):
 
     def test_camera_info(self):
         self.run_at(0.0, 0.0, 0.0, 0.5)
-        deadline = time.time() + 10
-        while not self.info.msgs and time.time() < deadline:
-            time.sleep(0.05)
+        simtest.wait_for('a camera_info message', lambda: self.info.msgs)
         ci = self.info.msgs[-1]
         f = 640 / (2 * math.tan(math.radians(30)))
         self.assertAlmostEqual(ci.K[0], f, delta=0.01)  # 554.26

@@ -10,6 +10,7 @@ from car.msg import ModelState, ModelStates
 from car.srv import DeleteModel, GetModelState, GetWorldProperties, SetModelState, SpawnModel
 from geometry_msgs.msg import Pose
 
+import simtest
 from simtest import Recorder, at_time, call, command
 
 
@@ -41,9 +42,10 @@ class ServicesTest(unittest.TestCase):
                 self.delete(name)
         call('/gazebo/reset_simulation')
 
-    def run_for(self, wall_seconds):
+    def run_until(self, t):
+        """Runs until the world's sim time has reached t [s], then pauses (waiting on sim time, not the machine)."""
         call('/gazebo/unpause_physics')
-        time.sleep(wall_seconds)
+        simtest.wait_for('sim time %g' % t, lambda: self.props().sim_time >= t)
         call('/gazebo/pause_physics')
 
     def test_spawn_adds_the_model(self):
@@ -94,11 +96,11 @@ class ServicesTest(unittest.TestCase):
         t0 = self.props().sim_time
         time.sleep(0.3)
         self.assertEqual(self.props().sim_time, t0)
-        self.run_for(0.3)
-        self.assertGreater(self.props().sim_time, t0)
+        self.run_until(t0 + 0.3)
+        self.assertGreaterEqual(self.props().sim_time, t0 + 0.3)
 
     def test_reset_simulation_sets_time_to_zero(self):
-        self.run_for(0.3)
+        self.run_until(0.3)
         self.assertGreater(self.props().sim_time, 0.0)
         call('/gazebo/reset_simulation')
         self.assertEqual(self.props().sim_time, 0.0)
@@ -107,7 +109,7 @@ class ServicesTest(unittest.TestCase):
         state = ModelState(model_name='unit_box', pose=pose(0.0, 2.0))
         state.pose.position.z = 0.5
         self.set(state)
-        self.run_for(0.2)
+        self.run_until(0.2)
         t = self.props().sim_time
         call('/gazebo/reset_world')
         self.assertAlmostEqual(self.get('unit_box', '').pose.position.x, -7.27142, delta=1e-3)
@@ -116,10 +118,8 @@ class ServicesTest(unittest.TestCase):
     def test_model_states_lists_every_model(self):
         rec = Recorder('/gazebo/model_states', ModelStates)
         rec.wait_connected()
-        self.run_for(0.3)
-        deadline = time.time() + 10
-        while not rec.msgs and time.time() < deadline:
-            time.sleep(0.05)
+        self.run_until(0.3)
+        simtest.wait_for('a model_states message', lambda: rec.msgs)
         self.assertIn('unit_cylinder_1', rec.msgs[-1].name)
         rec.sub.unregister()
 

@@ -5,7 +5,9 @@ import subprocess
 import termios
 import time
 import unittest
+import xmlrpc.client
 
+import rosgraph
 import rospy
 import rostest
 from geometry_msgs.msg import Twist
@@ -17,7 +19,7 @@ class TeleopTest(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node('test_teleop')
         cls.msgs = []
-        rospy.Subscriber('/cmd_vel', Twist, cls.msgs.append, queue_size=None)
+        cls.sub = rospy.Subscriber('/cmd_vel', Twist, cls.msgs.append, queue_size=None)
 
     def start(self):
         self.master, self.slave = os.openpty()
@@ -29,6 +31,14 @@ class TeleopTest(unittest.TestCase):
         while time.time() < deadline and (termios.tcgetattr(self.slave) == self.saved or
                                           not self.msgs_pub_connected()):
             time.sleep(0.05)
+
+    def teleop_sends_to_us(self):
+        master = rosgraph.Master(rospy.get_name())
+        for node in next((n for t, n in master.getSystemState()[0] if t == '/cmd_vel'), []):
+            info = xmlrpc.client.ServerProxy(master.lookupNode(node)).getBusInfo(rospy.get_name())[2]
+            if any(c[1] == rospy.get_name() and c[2] == 'o' and c[4] == '/cmd_vel' for c in info):
+                return True
+        return False
 
     def msgs_pub_connected(self):
         return any(n for n in rospy.get_published_topics() if n[0] == '/cmd_vel')
@@ -53,7 +63,11 @@ class TeleopTest(unittest.TestCase):
 
     def test_keys_publish_twists_and_the_terminal_is_restored(self):
         self.start()
-        time.sleep(1.0)  # let the subscription connect
+        # the teleop's publisher has added its connection to us (its own bus info says so): a key sent before that
+        # is published to nobody
+        deadline = time.time() + 60
+        while not self.teleop_sends_to_us() and time.time() < deadline:
+            time.sleep(0.05)
         (fwd,) = self.send('i', 1)
         self.assertEqual((fwd.linear.x, fwd.angular.z), (0.5, 0.0))
         (left,) = self.send('j', 1)
