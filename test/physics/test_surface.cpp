@@ -105,6 +105,23 @@ TEST(SurfaceContact, MaxVelCapsPenetrationCorrection) {
   EXPECT_NEAR(r.root_state().pose.translation().z(), 0.025 - 0.010, 5e-4);
 }
 
+TEST(SurfaceContact, MinDepthIsPenetrationLeftUncorrected) {
+  // minDepth 5 mm: the contact corrects only depth - 5 mm. A plate started 3 mm deep is not pushed out (the
+  // contact only stops it sinking further): after 0.5 s it is still 3 mm deep (tolerance 0.05 mm). Without
+  // minDepth the same plate is pushed out to (nearly) no depth: < 0.1 mm.
+  for (const bool min_depth : {true, false}) {
+    physics::Physics p(flat(), options(), {});
+    const RobotModel m = block(1.0, 0.4, 0.4, 0.05, min_depth ? "<minDepth>0.005</minDepth>" : "");
+    physics::Robot& r = p.add_robot(m, "plate", pose(0, 0, 0.025 - 0.003), {});
+    run(p, 500);
+    const double depth = 0.025 - r.root_state().pose.translation().z();
+    if (min_depth)
+      EXPECT_NEAR(depth, 0.003, 5e-5);
+    else
+      EXPECT_LT(depth, 1e-4);
+  }
+}
+
 TEST(SurfaceContact, MaxContactsZeroMakesNoContact) {
   // Gazebo keeps at most maxContacts points per pair: 0 keeps none, so the plate falls through the ground.
   // Free fall for 0.2 s (symplectic Euler): z = z0 - g dt^2 n (n + 1) / 2 = 0.025 - 10e-6 * 200 * 201 / 2 = -0.176.
