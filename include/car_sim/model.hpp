@@ -74,6 +74,14 @@ struct GazeboLinkExt {
   std::optional<double> laser_retro;
   std::optional<bool> self_collide;
   std::string material;            // e.g. "Gazebo/Yellow"
+  // Surface and link physics (docs/COMPAT-physics.md). Unset values keep Gazebo's defaults.
+  std::optional<Eigen::Vector3d> fdir1;  // [-] first friction direction, collision frame
+  std::optional<double> min_depth;       // [m] penetration allowed before the contact pushes back
+  std::optional<double> max_vel;         // [m/s] largest penetration-correction velocity
+  std::optional<int> max_contacts;       // [-] most contact points per pair
+  std::optional<bool> gravity;           // <gravity>; false = the link feels no gravity
+  std::optional<bool> turn_gravity_off;  // <turnGravityOff>; true = the link feels no gravity
+  std::optional<double> damping_factor;  // [-] per-step velocity decay: v <- v (1 - f)
   ParamList other;                 // any other element of the block, kept for listing
 };
 

@@ -2,6 +2,8 @@
 // read the way Gazebo's URDF import reads them.
 #include <tinyxml2.h>
 
+#include <sstream>
+
 #include "car_sim/model.hpp"
 #include "xml_util.hpp"
 
@@ -33,6 +35,16 @@ std::optional<double> number_in(RobotModel* m, const tinyxml2::XMLElement* e, co
   if (!v)
     note(m, Severity::Error, "gazebo-value", where, "'" + text_of(e) + "' is not a number", e->GetLineNum());
   return v;
+}
+
+// Three numbers in a <gazebo> block (e.g. fdir1 "1 0 0"); anything else is an error naming the element.
+std::optional<Eigen::Vector3d> vector_in(RobotModel* m, const tinyxml2::XMLElement* e, const std::string& where) {
+  std::istringstream in(text_of(e));
+  Eigen::Vector3d v;
+  std::string rest;
+  if (in >> v.x() >> v.y() >> v.z() && !(in >> rest) && v.allFinite()) return v;
+  note(m, Severity::Error, "gazebo-value", where, "'" + text_of(e) + "' is not three numbers", e->GetLineNum());
+  return std::nullopt;
 }
 
 std::optional<bool> flag_in(RobotModel* m, const tinyxml2::XMLElement* e, const std::string& where) {
@@ -119,6 +131,25 @@ void read_link_block(RobotModel* m, const tinyxml2::XMLElement* g, Link* link) {
       ext.laser_retro = number_in(m, c, here);
     } else if (tag == "selfCollide") {
       ext.self_collide = flag_in(m, c, here);
+    } else if (tag == "fdir1") {
+      ext.fdir1 = vector_in(m, c, here);
+    } else if (tag == "minDepth") {
+      ext.min_depth = number_in(m, c, here);
+    } else if (tag == "maxVel") {
+      ext.max_vel = number_in(m, c, here);
+    } else if (tag == "maxContacts") {
+      if (auto v = number_in(m, c, here)) {
+        if (*v < 0.0 || *v != static_cast<double>(static_cast<int>(*v)))
+          note(m, Severity::Error, "gazebo-value", here, "maxContacts must be a non-negative integer", c->GetLineNum());
+        else
+          ext.max_contacts = static_cast<int>(*v);
+      }
+    } else if (tag == "gravity") {
+      ext.gravity = flag_in(m, c, here);
+    } else if (tag == "turnGravityOff") {
+      ext.turn_gravity_off = flag_in(m, c, here);
+    } else if (tag == "dampingFactor") {
+      ext.damping_factor = number_in(m, c, here);
     } else if (c->FirstChildElement()) {
       flatten(c, tag, &ext.other);
     } else {
@@ -130,6 +161,14 @@ void read_link_block(RobotModel* m, const tinyxml2::XMLElement* g, Link* link) {
     if (v && *v < 0.0)
       note(m, Severity::Error, "gazebo-value", where + "/" + key, "friction coefficient must be >= 0", g->GetLineNum());
   }
+  // [surface physics] values that must not be negative, and a stiffness that must be positive
+  const std::pair<const char*, const std::optional<double>*> non_negative[] = {
+      {"kd", &ext.kd}, {"minDepth", &ext.min_depth}, {"maxVel", &ext.max_vel}, {"dampingFactor", &ext.damping_factor}};
+  for (const auto& [key, v] : non_negative)
+    if (*v && **v < 0.0)
+      note(m, Severity::Error, "gazebo-value", where + "/" + key, "must be >= 0", g->GetLineNum());
+  if (ext.kp && !(*ext.kp > 0.0))
+    note(m, Severity::Error, "gazebo-value", where + "/kp", "contact stiffness must be > 0", g->GetLineNum());
 }
 
 }  // namespace

@@ -80,7 +80,7 @@ BodyTree build_bodies(const RobotModel& m) {
       const Link* l = m.find_link(link);
       if (l->inertial) accumulate(*l->inertial, t.link_in_top[link], &ms, &cs, &is);
       const double mu = l->gazebo.mu1.value_or(1.0);
-      for (const auto& s : l->collisions) b.shapes.push_back({s, t.link_in_top[link] * s.origin, mu});
+      for (const auto& s : l->collisions) b.shapes.push_back({s, t.link_in_top[link] * s.origin, mu, l});
     }
     for (double x : ms) b.mass += x;
     if (!(b.mass > 0.0))

@@ -18,6 +18,7 @@
 
 #include "bodies.hpp"
 #include "materials.hpp"
+#include "surface.hpp"
 
 namespace car_sim {
 namespace physics {
@@ -96,6 +97,18 @@ bool is_ball_caster(const Body& b, const std::set<std::string>& driven) {
   return b.shapes[0].in_top.translation().norm() < 1e-9;
 }
 
+// The surfaces of a world (SDF) object, one per collision: mu and mu2 (SDF sets no fdir1 or contact values here).
+std::unique_ptr<SurfaceSet> world_surface(const std::vector<WorldCollision>& collisions) {
+  auto set = std::make_unique<SurfaceSet>();
+  for (const auto& c : collisions) {
+    Surface s;
+    s.mu1 = c.friction.mu;
+    s.mu2 = c.friction.mu2;
+    set->shapes.push_back(s);
+  }
+  return set;
+}
+
 }  // namespace
 
 // ---- Bullet state -------------------------------------------------------------------------------------------
@@ -107,7 +120,7 @@ struct Physics::Impl {
   btDefaultCollisionConfiguration config;
   btCollisionDispatcher dispatcher{&config};
   btDbvtBroadphase broadphase;
-  btMultiBodyConstraintSolver solver;
+  SurfaceSolver solver;  // Bullet's, with Gazebo's surface rules where a pair needs them (surface.hpp)
   btMultiBodyDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
   // static meshes (declared before the shapes that point into them): Bullet's view of the triangles, and the scaled copies it points into
   std::vector<std::unique_ptr<btTriangleIndexVertexArray>> mesh_arrays;
@@ -128,6 +141,7 @@ struct Physics::Impl {
   std::map<std::string, std::vector<btCollisionObject*>> model_objects;  // world model -> its Bullet objects
   std::vector<std::unique_ptr<BulletRobot>> robots;
   std::vector<std::string> object_names;       // btCollisionObject user index -> "model/link"
+  std::vector<std::unique_ptr<SurfaceSet>> surfaces;  // world objects' surfaces (their user pointers)
 
   std::unique_ptr<RayScene> rays;
   std::vector<std::pair<int, const btCollisionObject*>> moving_ray_bodies;  // ray body -> its Bullet object
@@ -214,15 +228,28 @@ struct Physics::Impl {
   }
 
   // One shape, or a compound of several, placed relative to a frame (com for moving bodies).
-  btCollisionShape* make_body_shape(const std::vector<std::pair<Shape, Eigen::Isometry3d>>& parts) {
+  // kept: the indices of the parts Bullet collides, in compound-child order.
+  btCollisionShape* make_body_shape(const std::vector<std::pair<Shape, Eigen::Isometry3d>>& parts,
+                                    std::vector<int>* kept = nullptr) {
     std::vector<std::pair<btCollisionShape*, Eigen::Isometry3d>> made;
-    for (const auto& p : parts)
-      if (btCollisionShape* s = make_shape(p.first, true)) made.emplace_back(s, p.second);
+    for (size_t i = 0; i < parts.size(); ++i) {
+      if (btCollisionShape* s = make_shape(parts[i].first, true)) {
+        made.emplace_back(s, parts[i].second);
+        if (kept) kept->push_back(static_cast<int>(i));
+      }
+    }
     if (made.empty()) return nullptr;
     if (made.size() == 1 && is_identity(made[0].second)) return made[0].first;
     auto* compound = new btCompoundShape(true, static_cast<int>(made.size()));
     for (const auto& m : made) compound->addChildShape(bt(m.second), m.first);
     return own(compound);
+  }
+
+  // Gives a collision object its surfaces (kept for the object's lifetime).
+  void attach(btCollisionObject* o, std::unique_ptr<SurfaceSet> set) {
+    set->finish();
+    o->setUserPointer(set.get());
+    surfaces.push_back(std::move(set));
   }
 
   void add_world_model(const WorldModelDesc& m);
@@ -267,18 +294,18 @@ class BulletRobot : public Robot {
         mb->setupRevolute(i - 1, b.mass, bt(b.principal), b.parent - 1, bt_quat(rot_parent_to_this), bt(axis_in_com),
                           bt(pivot_in_parent), bt(pivot_to_com), true);
       }
-      mb->getLink(i - 1).m_jointDamping = j.damping;
-      mb->getLink(i - 1).m_jointFriction = j.friction;
       joint_link_[j.name] = i - 1;
+      link_joint_.push_back(&j);
     }
     mb->finalizeMultiDof();
     P_.world.addMultiBody(mb);
 
-    // Colliders, one per body with shapes.
+    // Colliders, one per body with shapes, each shape with its link's surface (surface.hpp).
+    bool self_collision = false;
     for (int i = 0; i <= n_links; ++i) {
       const Body& b = tree_.bodies[i];
       std::vector<std::pair<Shape, Eigen::Isometry3d>> parts;
-      double mu = 1.0;
+      std::vector<const detail::BodyShape*> from;  // the body shape each part came from
       if (is_wheel(b)) {
         Shape sphere;
         sphere.type = ShapeType::Sphere;
@@ -286,21 +313,36 @@ class BulletRobot : public Robot {
         Eigen::Isometry3d at = Eigen::Isometry3d::Identity();
         at.translation() = b.shapes[0].in_top.translation();
         parts.emplace_back(sphere, b.top_to_com.inverse() * at);
-        mu = b.shapes[0].mu;
+        from.push_back(&b.shapes[0]);
       } else {
         for (const auto& s : b.shapes) {
           if (s.shape.type == ShapeType::Plane) continue;
           parts.emplace_back(s.shape, b.top_to_com.inverse() * s.in_top);
-          mu = s.mu;
+          from.push_back(&s);
         }
       }
-      if (is_ball_caster(b, driven)) mu = 0.0;
-      btCollisionShape* shape = P_.make_body_shape(parts);
-      if (!shape) continue;
-      auto col = std::make_unique<btMultiBodyLinkCollider>(mb, i - 1);
+      std::vector<int> kept;
+      btCollisionShape* shape = P_.make_body_shape(parts, &kept);
+      // A body without shapes still gets a collider (an empty shape): Bullet solves a multibody link's joint
+      // limits and motors only in its collider's simulation island.
+      if (!shape) shape = P_.own(new btEmptyShape());
+      auto surfaces = std::make_unique<SurfaceSet>();
+      for (int k : kept) {
+        // fdir1 is given in the collision frame: rotate it into the collider (com) frame
+        const Eigen::Matrix3d R = (b.top_to_com.inverse() * from[k]->in_top).linear();
+        Surface sf = link_surface(from[k]->link->gazebo, R);
+        if (is_ball_caster(b, driven)) sf.mu1 = sf.mu2 = 0.0;
+        surfaces->shapes.push_back(sf);
+      }
+      for (const auto& link : b.links)
+        surfaces->self_collide = surfaces->self_collide || model_.find_link(link)->gazebo.self_collide.value_or(false);
+      self_collision = self_collision || surfaces->self_collide;
+      surfaces->finish();
+      auto col = std::make_unique<SurfaceCollider>(mb, i - 1);
       col->setCollisionShape(shape);
-      col->setFriction(mu);
+      col->setFriction(surfaces->shapes.front().mu1);
       col->setRestitution(0.0);
+      P_.attach(col.get(), std::move(surfaces));
       P_.name_object(col.get(), name_ + "/" + b.top);
       P_.world.addCollisionObject(col.get(), btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
       if (i == 0)
@@ -309,10 +351,17 @@ class BulletRobot : public Robot {
         mb->getLink(i - 1).m_collider = col.get();
       colliders_.push_back(std::move(col));
     }
+    mb->setHasSelfCollision(self_collision);
+    // Hard stops on revolute and prismatic joints; Coulomb joint friction as a zero-velocity motor.
     for (const auto& j : model_.joints) {
-      if (j.type != JointType::Revolute || !j.limits || j.limits->lower >= j.limits->upper) continue;
-      add_constraint(new btMultiBodyJointLimitConstraint(mb, joint_link_.at(j.name), j.limits->lower, j.limits->upper));
+      if (j.type == JointType::Fixed) continue;
+      const int link = joint_link_.at(j.name);
+      const bool bounded = j.type == JointType::Revolute || j.type == JointType::Prismatic;
+      if (bounded && j.limits && j.limits->lower < j.limits->upper)
+        add_constraint(new btMultiBodyJointLimitConstraint(mb, link, j.limits->lower, j.limits->upper));
+      if (j.friction > 0.0) add_constraint(new btMultiBodyJointMotor(mb, link, 0, 0.0, j.friction * P_.options.dt));
     }
+    collect_link_forces();
     update_colliders();
   }
 
@@ -334,16 +383,24 @@ class BulletRobot : public Robot {
   double joint_position(int j) const override { return mb_->getJointPos(j); }
   double joint_velocity(int j) const override { return mb_->getJointVel(j); }
 
+  // A motor's effort is capped by the joint's <limit effort> (when > 0).
   int add_motor(int joint, double max_effort) override {
+    const Joint* j = link_joint_.at(joint);
+    if (j->limits && j->limits->effort > 0.0) max_effort = std::min(max_effort, j->limits->effort);
     auto* m = new btMultiBodyJointMotor(mb_.get(), joint, 0, 0.0, max_effort * P_.options.dt);
     add_constraint(m);
     motors_.push_back(m);
+    motor_joint_.push_back(j);
     return static_cast<int>(motors_.size()) - 1;
   }
 
+  // The target velocity is clamped by the joint's <limit velocity> (when > 0).
   void set_motor(int motor, const MotorTarget& t) override {
     btMultiBodyJointMotor* m = motors_.at(motor);
-    m->setVelocityTarget(t.velocity, t.kd);
+    const Joint* j = motor_joint_.at(motor);
+    double v = t.velocity;
+    if (j->limits && j->limits->velocity > 0.0) v = std::clamp(v, -j->limits->velocity, j->limits->velocity);
+    m->setVelocityTarget(v, t.kd);
     m->setPositionTarget(t.position, t.kp);
   }
 
@@ -434,6 +491,82 @@ class BulletRobot : public Robot {
   std::vector<std::unique_ptr<btMultiBodyConstraint>> constraints_;  // joint limits and motors
   std::vector<btMultiBodyJointMotor*> motors_;
   std::map<std::string, int> joint_link_;     // non-fixed joint -> multibody link index
+  std::vector<const Joint*> link_joint_;      // multibody link index -> its joint
+  std::vector<const Joint*> motor_joint_;     // motor id -> its joint
+
+  // A link's share of its body for the per-step forces: gravity off and velocity decay (dampingFactor).
+  struct LinkForce {
+    int body = 0;                               // 0 = base, i = multibody link i - 1
+    double mass = 0.0;                          // [kg]
+    Eigen::Vector3d com = Eigen::Vector3d::Zero();       // [m] link centre of mass, body com frame
+    Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();   // [kg m^2] about the link com, body com frame
+    bool no_gravity = false;
+    double decay = 0.0;                         // [-] per step
+  };
+  std::vector<LinkForce> link_forces_;
+  std::vector<std::pair<int, double>> joint_damping_;  // (multibody link, damping) for joints with damping > 0
+
+  void collect_link_forces() {
+    for (size_t i = 1; i < tree_.bodies.size(); ++i)
+      if (tree_.bodies[i].joint->damping > 0.0) joint_damping_.emplace_back(static_cast<int>(i) - 1, tree_.bodies[i].joint->damping);
+    for (size_t i = 0; i < tree_.bodies.size(); ++i) {
+      const Body& b = tree_.bodies[i];
+      for (const auto& name : b.links) {
+        const Link* l = model_.find_link(name);
+        const auto& g = l->gazebo;
+        const bool no_gravity = g.gravity ? !*g.gravity : g.turn_gravity_off.value_or(false);
+        const double decay = g.damping_factor.value_or(0.0);
+        if (!l->inertial || (!no_gravity && decay <= 0.0)) continue;
+        // the link's inertial frame in the body's com frame
+        const Eigen::Isometry3d T = b.top_to_com.inverse() * tree_.link_in_top.at(name) * l->inertial->origin;
+        LinkForce f;
+        f.body = static_cast<int>(i);
+        f.mass = l->inertial->mass;
+        f.com = T.translation();
+        f.inertia = T.linear() * l->inertial->inertia * T.linear().transpose();
+        f.no_gravity = no_gravity;
+        f.decay = decay;
+        link_forces_.push_back(f);
+      }
+    }
+  }
+
+ public:
+  // Forces for the coming step [N], [N m], world frame: joint damping -d q', gravity cancelled on links that
+  // feel none, and ODE's per-step velocity decay v <- v (1 - f) as the force -m f v / dt.
+  void apply_forces(double dt, const Eigen::Vector3d& gravity) {
+    btMultiBody* mb = mb_.get();
+    for (const auto& [link, d] : joint_damping_) mb->addJointTorque(link, -d * mb->getJointVel(link));
+    if (link_forces_.empty()) return;
+    const int n = mb->getNumLinks();
+    std::vector<btVector3> omega(n + 1), vel(n + 1);
+    mb->compTreeLinkVelocities(omega.data(), vel.data());
+    btAlignedObjectArray<btQuaternion> q;
+    btAlignedObjectArray<btVector3> v;
+    mb->forwardKinematics(q, v);
+    for (const auto& f : link_forces_) {
+      const Eigen::Isometry3d com =
+          f.body == 0 ? eig(mb->getBaseWorldTransform()) : eig(mb->getLink(f.body - 1).m_cachedWorldTransform);
+      const Eigen::Matrix3d& R = com.linear();
+      const Eigen::Vector3d w = R * eig(omega[f.body]);
+      const Eigen::Vector3d r = R * f.com;  // body com -> link com, world
+      Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
+      if (f.no_gravity) force -= f.mass * gravity;
+      if (f.decay > 0.0) {
+        const Eigen::Vector3d v_link = R * eig(vel[f.body]) + w.cross(r);
+        force -= f.mass * f.decay / dt * v_link;
+        torque -= f.decay / dt * (R * f.inertia * R.transpose()) * w;
+      }
+      torque += r.cross(force);
+      if (f.body == 0) {
+        mb->addBaseForce(bt(force));
+        mb->addBaseTorque(bt(torque));
+      } else {
+        mb->addLinkForce(f.body - 1, bt(force));
+        mb->addLinkTorque(f.body - 1, bt(torque));
+      }
+    }
+  }
 };
 
 Physics::Impl::Impl(const WorldDescription& d, const Options& o) : options(o) {
@@ -484,6 +617,7 @@ void Physics::Impl::add_world_model(const WorldModelDesc& m) {
         obj->setWorldTransform(bt(T));
         obj->setFriction(c.friction.mu);
         obj->setRestitution(0.0);
+        attach(obj, world_surface({c}));
         objects.emplace_back(obj);
         name_object(obj, m.name + "/" + l.name);
         model_objects[m.name].push_back(obj);
@@ -509,7 +643,10 @@ void Physics::Impl::add_world_model(const WorldModelDesc& m) {
       parts.emplace_back(c.shape, link_to_com.inverse() * c.shape.origin);
       mu = c.friction.mu;
     }
-    btCollisionShape* shape = make_body_shape(parts);
+    std::vector<int> kept;
+    btCollisionShape* shape = make_body_shape(parts, &kept);
+    std::vector<WorldCollision> kept_collisions;
+    for (int i : kept) kept_collisions.push_back(l.collisions[i]);
     if (!shape) shape = own(new btEmptyShape());
     const Eigen::Isometry3d T = m.pose * l.pose * link_to_com;
     auto* ms = new btDefaultMotionState(bt(T));
@@ -520,6 +657,7 @@ void Physics::Impl::add_world_model(const WorldModelDesc& m) {
     ci.m_linearDamping = 0.0;
     ci.m_angularDamping = 0.0;
     auto* rb = new btRigidBody(ci);
+    attach(rb, world_surface(kept_collisions));
     // Resting world objects sleep (no work) until something touches them; the robot never sleeps.
     objects.emplace_back(rb);
     name_object(rb, m.name + "/" + l.name);
@@ -632,6 +770,8 @@ const Robot* Physics::find_robot(const std::string& name) const {
 }
 
 void Physics::step(double dt) {
+  const Eigen::Vector3d g = eig(impl_->world.getGravity());
+  for (auto& r : impl_->robots) r->apply_forces(dt, g);
   // physics: one fixed step, no internal substepping
   impl_->world.stepSimulation(dt, 0, dt);
   ++impl_->steps;

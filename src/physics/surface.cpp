@@ -1,0 +1,240 @@
+// Gazebo's surface rules on Bullet; the rules are written down in docs/COMPAT-physics.md.
+#include "surface.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace car_sim {
+namespace physics {
+
+namespace {
+
+// Bullet's persistent manifold holds at most this many points per pair.
+constexpr int kManifoldPoints = 4;
+
+// What two surfaces make of one contact point (ODEPhysics::Collide's rules).
+struct PairSurface {
+  double mu1 = 1.0, mu2 = 1.0;           // [-]
+  std::optional<btVector3> fdir1;        // [-] world frame, not yet projected onto the contact plane
+  bool stiffness = false;                // kp/kd set on either side
+  double kp = kDefaultKp, kd = kDefaultKd;
+  std::optional<double> min_depth;       // [m]
+  std::optional<double> max_vel;         // [m/s]
+  std::optional<int> max_contacts;
+};
+
+const Surface& default_surface() {
+  static const Surface s;
+  return s;
+}
+
+const Surface& surface_at(const btCollisionObject* o, int child) {
+  const SurfaceSet* set = surfaces_of(o);
+  return set ? set->at(child) : default_surface();
+}
+
+PairSurface combine(const btCollisionObject* a, const Surface& sa, const btCollisionObject* b, const Surface& sb) {
+  PairSurface p;
+  // friction: the smaller coefficient per direction
+  p.mu1 = std::min(sa.mu1, sb.mu1);
+  p.mu2 = std::min(sa.mu2, sb.mu2);
+  // fdir1: the first surface's, unless the second sets one and the first sets none or has the larger mu1
+  if (sa.fdir1) p.fdir1 = a->getWorldTransform().getBasis() * *sa.fdir1;
+  if (sb.fdir1 && (!sa.fdir1 || sa.mu1 > sb.mu1)) p.fdir1 = b->getWorldTransform().getBasis() * *sb.fdir1;
+  // stiffness: springs in series; damping: dampers in parallel
+  if (sa.kp || sa.kd || sb.kp || sb.kd) {
+    p.stiffness = true;
+    p.kp = 1.0 / (1.0 / sa.kp.value_or(kDefaultKp) + 1.0 / sb.kp.value_or(kDefaultKp));
+    p.kd = sa.kd.value_or(kDefaultKd) + sb.kd.value_or(kDefaultKd);
+  }
+  // correction limits: the larger allowed depth, the smaller correction velocity, the fewer contacts
+  for (const Surface* s : {&sa, &sb}) {
+    if (s->min_depth) p.min_depth = std::max(p.min_depth.value_or(0.0), *s->min_depth);
+    if (s->max_vel) p.max_vel = p.max_vel ? std::min(*p.max_vel, *s->max_vel) : *s->max_vel;
+    if (s->max_contacts) p.max_contacts = p.max_contacts ? std::min(*p.max_contacts, *s->max_contacts) : *s->max_contacts;
+  }
+  return p;
+}
+
+// Whether a manifold's contacts need car's conversion (else Bullet's own, unchanged).
+bool needs_conversion(const btPersistentManifold* m) {
+  const SurfaceSet* a = surfaces_of(m->getBody0());
+  const SurfaceSet* b = surfaces_of(m->getBody1());
+  if ((a && a->convert) || (b && b->convert)) return true;
+  const Surface& sa = a ? a->at(-1) : default_surface();
+  const Surface& sb = b ? b->at(-1) : default_surface();
+  return std::min(sa.mu1, sb.mu1) != std::min(sa.mu2, sb.mu2);
+}
+
+}  // namespace
+
+bool Surface::needs_conversion() const {
+  return fdir1 || kp || kd || min_depth || max_vel || (max_contacts && *max_contacts < kManifoldPoints);
+}
+
+bool Surface::operator==(const Surface& o) const {
+  return mu1 == o.mu1 && mu2 == o.mu2 && fdir1 == o.fdir1 && kp == o.kp && kd == o.kd && min_depth == o.min_depth &&
+         max_vel == o.max_vel && max_contacts == o.max_contacts;
+}
+
+const Surface& SurfaceSet::at(int child) const {
+  if (shapes.size() == 1 || child < 0 || child >= static_cast<int>(shapes.size())) return shapes.front();
+  return shapes[child];
+}
+
+void SurfaceSet::finish() {
+  if (shapes.empty()) shapes.emplace_back();
+  convert = false;
+  for (const auto& s : shapes) convert = convert || s.needs_conversion() || !(s == shapes.front());
+}
+
+Surface link_surface(const GazeboLinkExt& g, const Eigen::Matrix3d& shape_to_object) {
+  Surface s;
+  s.mu1 = g.mu1.value_or(1.0);
+  s.mu2 = g.mu2.value_or(1.0);
+  if (g.fdir1 && g.fdir1->norm() > 1e-12) {
+    const Eigen::Vector3d f = shape_to_object * g.fdir1->normalized();
+    s.fdir1 = btVector3(f.x(), f.y(), f.z());
+  }
+  s.kp = g.kp;
+  s.kd = g.kd;
+  s.min_depth = g.min_depth;
+  s.max_vel = g.max_vel;
+  s.max_contacts = g.max_contacts;
+  return s;
+}
+
+const SurfaceSet* surfaces_of(const btCollisionObject* o) {
+  return o ? static_cast<const SurfaceSet*>(o->getUserPointer()) : nullptr;
+}
+
+bool SurfaceCollider::checkCollideWithOverride(const btCollisionObject* co) const {
+  const btMultiBodyLinkCollider* other = btMultiBodyLinkCollider::upcast(co);
+  if (!other || other->m_multiBody != m_multiBody) return true;
+  const SurfaceSet* a = surfaces_of(this);
+  const SurfaceSet* b = surfaces_of(other);
+  if (!((a && a->self_collide) || (b && b->self_collide))) return false;
+  // never across the joint between a body and its parent
+  if (m_link >= 0 && m_multiBody->getLink(m_link).m_parent == other->m_link) return false;
+  if (other->m_link >= 0 && m_multiBody->getLink(other->m_link).m_parent == m_link) return false;
+  return true;
+}
+
+void SurfaceSolver::convertContacts(btPersistentManifold** manifolds, int count, const btContactSolverInfo& info) {
+  bullet_.resize(0);
+  car_.resize(0);
+  for (int i = 0; i < count; ++i) {
+    btPersistentManifold* m = manifolds[i];
+    const bool multibody = btMultiBodyLinkCollider::upcast(m->getBody0()) || btMultiBodyLinkCollider::upcast(m->getBody1());
+    if (multibody && needs_conversion(m))
+      car_.push_back(m);
+    else
+      bullet_.push_back(m);
+  }
+  // Bullet's own conversion (it also adds the joint constraints' rows), then car's contacts
+  btMultiBodyConstraintSolver::convertContacts(bullet_.size() ? &bullet_[0] : nullptr, bullet_.size(), info);
+  for (int i = 0; i < car_.size(); ++i) convert(car_[i], info);
+}
+
+// One manifold with a multibody on at least one side: per point one normal row and two friction rows, set up by
+// Bullet's own row builders, with Gazebo's pair rules for the coefficients, directions and depth.
+void SurfaceSolver::convert(btPersistentManifold* m, const btContactSolverInfo& info) {
+  auto* co0 = const_cast<btCollisionObject*>(m->getBody0());
+  auto* co1 = const_cast<btCollisionObject*>(m->getBody1());
+  const btMultiBodyLinkCollider* fcA = btMultiBodyLinkCollider::upcast(co0);
+  const btMultiBodyLinkCollider* fcB = btMultiBodyLinkCollider::upcast(co1);
+  btMultiBody* mbA = fcA ? fcA->m_multiBody : nullptr;
+  btMultiBody* mbB = fcB ? fcB->m_multiBody : nullptr;
+  const int bodyA = mbA ? -1 : getOrInitSolverBody(*co0, info.m_timeStep);
+  const int bodyB = mbB ? -1 : getOrInitSolverBody(*co1, info.m_timeStep);
+
+  // The points in contact, deepest first (ties by index), cut to the pair's maxContacts.
+  const int n = m->getNumContacts();
+  std::array<int, kManifoldPoints> order{};
+  int used = 0;
+  std::optional<int> keep;
+  for (int j = 0; j < n && j < kManifoldPoints; ++j) {
+    const btManifoldPoint& cp = m->getContactPoint(j);
+    if (cp.getDistance() > m->getContactProcessingThreshold()) continue;
+    order[used++] = j;
+    const PairSurface p = combine(co0, surface_at(co0, cp.m_index0), co1, surface_at(co1, cp.m_index1));
+    if (p.max_contacts) keep = keep ? std::min(*keep, *p.max_contacts) : *p.max_contacts;
+  }
+  std::stable_sort(order.begin(), order.begin() + used, [&](int x, int y) {
+    return m->getContactPoint(x).getDistance() < m->getContactPoint(y).getDistance();
+  });
+  if (keep && *keep < used) used = std::max(*keep, 0);
+  std::array<bool, kManifoldPoints> active{};
+  for (int k = 0; k < used; ++k) active[order[k]] = true;
+
+  for (int j = 0; j < n; ++j) {
+    btManifoldPoint& cp = m->getContactPoint(j);
+    if (j >= kManifoldPoints || !active[j]) {
+      // not in contact (or cut): no warm start from it
+      cp.m_appliedImpulse = 0;
+      cp.m_prevRHS = 0;
+      continue;
+    }
+    const PairSurface p = combine(co0, surface_at(co0, cp.m_index0), co1, surface_at(co1, cp.m_index1));
+    if (p.stiffness) {
+      // Bullet's solver turns these into erp = dt kp / (dt kp + kd), cfm = 1 / (dt kp + kd), as ODE
+      cp.m_contactPointFlags |= BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING;
+      cp.m_combinedContactStiffness1 = p.kp;
+      cp.m_combinedContactDamping1 = p.kd;
+    }
+    cp.m_combinedFriction = std::max(p.mu1, p.mu2);
+
+    const int normal_index = m_multiBodyNormalContactConstraints.size();
+    btMultiBodySolverConstraint& c = m_multiBodyNormalContactConstraints.expandNonInitializing();
+    c.m_orgConstraint = nullptr;
+    c.m_orgDofIndex = -1;
+    c.m_solverBodyIdA = bodyA;
+    c.m_solverBodyIdB = bodyB;
+    c.m_multiBodyA = mbA;
+    if (mbA) c.m_linkA = fcA->m_link;
+    c.m_multiBodyB = mbB;
+    if (mbB) c.m_linkB = fcB->m_link;
+    c.m_originalContactPoint = &cp;
+
+    // The depth the normal row corrects [m] (negative distance): less minDepth, and no more than maxVel can
+    // correct in one step at the row's erp.
+    const btScalar distance = cp.m_distance1;
+    btScalar d = distance;
+    if (d < 0 && p.min_depth) d = std::min<btScalar>(d + *p.min_depth, 0);
+    if (d < 0 && p.max_vel) {
+      const double erp = p.stiffness ? info.m_timeStep * p.kp / (info.m_timeStep * p.kp + p.kd) : info.m_erp2;
+      if (erp > 0) d = std::max<btScalar>(d, -*p.max_vel * info.m_timeStep / erp);
+    }
+    cp.m_distance1 = d;
+    btScalar relaxation;
+    setupMultiBodyContactConstraint(c, cp.m_normalWorldOnB, cp.m_appliedImpulse, cp, info, relaxation, false);
+    cp.m_distance1 = distance;
+    c.m_frictionIndex = m_multiBodyFrictionContactConstraints.size();
+
+    // Friction directions: fdir1 projected onto the contact plane, else Bullet's plane space of the normal (as
+    // its own path); direction 2 = normal x direction 1.
+    const btVector3& normal = cp.m_normalWorldOnB;
+    btVector3 d1, d2;
+    btPlaneSpace1(normal, d1, d2);
+    if (p.fdir1) {
+      const btVector3 f = *p.fdir1 - normal * normal.dot(*p.fdir1);
+      if (f.length2() > btScalar(1e-12)) {
+        d1 = f.normalized();
+        d2 = normal.cross(d1);
+      }
+    }
+    cp.m_lateralFrictionDir1 = d1;
+    cp.m_lateralFrictionDir2 = d2;
+    // each row limited by its own coefficient times the normal impulse (ODE's friction pyramid)
+    addMultiBodyFrictionConstraint(cp.m_lateralFrictionDir1, cp.m_appliedImpulseLateral1, m, normal_index, cp, co0, co1,
+                                   relaxation, info)
+        .m_friction = p.mu1;
+    addMultiBodyFrictionConstraint(cp.m_lateralFrictionDir2, cp.m_appliedImpulseLateral2, m, normal_index, cp, co0, co1,
+                                   relaxation, info)
+        .m_friction = p.mu2;
+  }
+}
+
+}  // namespace physics
+}  // namespace car_sim
