@@ -1,0 +1,76 @@
+// The zoo robots (test/data/zoo/) in the core, without ROS: nothing refused, what is lumped or dropped, the
+// world anchor holding, the mesh-only robot resting at the height its mesh gives. Values worked out by hand.
+#include <gtest/gtest.h>
+
+#include "car_sim/description.hpp"
+#include "car_sim/world.hpp"
+#include "test_util.hpp"
+
+using namespace car_sim;
+
+namespace {
+
+bool has(const RobotModel& m, const std::string& code, const std::string& element) {
+  for (const auto& d : m.diagnostics)
+    if (d.code == code && d.element == element) return true;
+  return false;
+}
+
+// A zoo URDF with package://car/test/data/zoo/ URIs made relative to the file (no ROS package path in gtest).
+RobotModel zoo(const std::string& file) {
+  std::string xml = read_text("test/data/zoo/" + file);
+  const std::string pkg = "package://car/test/data/zoo/";
+  for (auto at = xml.find(pkg); at != std::string::npos; at = xml.find(pkg)) xml.replace(at, pkg.size(), "");
+  return load_urdf_string(xml, data_path("zoo/" + file));
+}
+
+}  // namespace
+
+TEST(Zoo, SensorBotMasslessSensorLinksAreLumpedNotRefused) {
+  const RobotModel m = zoo("sensor_bot.urdf");
+  ASSERT_EQ(m.links.size(), 1u);
+  EXPECT_TRUE(has(m, "link-lumped", "link[camera_link]"));
+  EXPECT_TRUE(has(m, "link-lumped", "link[imu_link]"));
+  // the camera sensor now on base_link at camera_joint's origin (0.1, 0, 0.06)
+  ASSERT_EQ(m.sensors.size(), 1u);
+  EXPECT_EQ(m.sensors[0].link, "base_link");
+  EXPECT_NEAR(m.sensors[0].pose.translation().z(), 0.06, 1e-12);
+  // mass stays base_link's 1 kg: the lumped links have none
+  EXPECT_DOUBLE_EQ(m.links[0].inertial->mass, 1.0);
+}
+
+TEST(Zoo, CasterBotCasterLumpedWithItsOwnFriction) {
+  const RobotModel m = zoo("caster_bot.urdf");
+  EXPECT_TRUE(has(m, "link-lumped", "link[caster_link]"));
+  const Link* b = m.find_link("base_link");
+  ASSERT_EQ(b->collisions.size(), 2u);
+  // <mu1 value="0.1"/> (attribute form) and <mu2>0.1</mu2> apply to the caster's box only
+  EXPECT_EQ(m.surface(*b, b->collisions[1]).mu1, std::optional<double>(0.1));
+  EXPECT_EQ(m.surface(*b, b->collisions[1]).mu2, std::optional<double>(0.1));
+  EXPECT_FALSE(m.surface(*b, b->collisions[0]).mu1.has_value());
+  // mass 2 + 0.05 kg
+  EXPECT_DOUBLE_EQ(b->inertial->mass, 2.05);
+}
+
+TEST(Zoo, MeshBotRestsAtTheHeightItsMeshGives) {
+  World w(empty_world());
+  w.spawn(zoo("mesh_bot.urdf"), "mesh_bot", at(0, 0, 0) * Eigen::Translation3d(0, 0, 0.2));
+  w.step(2000);  // 2 s: dropped 0.15 m, settled
+  // the STL box is 0.1 m high, centred on base_link: its bottom at -0.05 m, so base_link rests at z = 0.05 m,
+  // plus Bullet's 0.0005 m hull margin (physics.cpp kMargin): 0.0505 m, within 2 mm
+  EXPECT_NEAR(w.link_pose("mesh_bot", "base_link").translation().z(), 0.0505, 0.002);
+}
+
+TEST(Zoo, ArmFixedToTheWorldHoldsItsBase) {
+  const RobotModel m = zoo("arm.urdf");
+  EXPECT_TRUE(m.anchored());
+  EXPECT_TRUE(has(m, "world-anchor", "joint[world_fix]"));
+  World w(empty_world());
+  w.spawn(m, "arm", at(1.0, 2.0, 0.0));
+  w.step(1000);
+  // base = spawn pose * world_fix origin = (1, 2, 0.5), held there against gravity
+  const Eigen::Vector3d p = w.link_pose("arm", "base").translation();
+  EXPECT_NEAR(p.x(), 1.0, 1e-9);
+  EXPECT_NEAR(p.y(), 2.0, 1e-9);
+  EXPECT_NEAR(p.z(), 0.5, 1e-9);
+}
