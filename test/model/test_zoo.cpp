@@ -74,3 +74,25 @@ TEST(Zoo, ArmFixedToTheWorldHoldsItsBase) {
   EXPECT_NEAR(p.y(), 2.0, 1e-9);
   EXPECT_NEAR(p.z(), 0.5, 1e-9);
 }
+
+TEST(Zoo, RevoluteJointFromWorldKeepsItsPivot) {
+  // a 1 kg point-like bob 0.3 m from a pivot 1 m above the spawn point, on a revolute joint (axis y) from `world`:
+  // the model is anchored, the bob swings under gravity, and the pivot (the bob link's origin, on the joint
+  // axis) stays at (0, 0, 1) while the bob's com leaves its start (0.3, 0, 1)
+  const RobotModel m = load_urdf_string(
+      "<robot name='pendulum'><link name='world'/>"
+      "<link name='bob'><inertial><origin xyz='0.3 0 0'/><mass value='1'/>"
+      "<inertia ixx='0.0001' ixy='0' ixz='0' iyy='0.0001' iyz='0' izz='0.0001'/></inertial></link>"
+      "<joint name='pivot' type='revolute'><parent link='world'/><child link='bob'/><origin xyz='0 0 1'/>"
+      "<axis xyz='0 1 0'/><limit lower='-3' upper='3' effort='0' velocity='10'/></joint></robot>");
+  EXPECT_TRUE(m.anchored());
+  World w(empty_world());
+  w.spawn(m, "pendulum", at(0, 0, 0));
+  w.step(200);  // 0.2 s
+  const Eigen::Isometry3d bob = w.link_pose("pendulum", "bob");
+  EXPECT_NEAR(bob.translation().x(), 0.0, 1e-6);
+  EXPECT_NEAR(bob.translation().y(), 0.0, 1e-6);
+  EXPECT_NEAR(bob.translation().z(), 1.0, 1e-6);
+  // it swung: after 0.2 s the arm has turned down (com below the pivot height)
+  EXPECT_LT((bob * Eigen::Vector3d(0.3, 0, 0)).z(), 1.0 - 0.05);
+}
