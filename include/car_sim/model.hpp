@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -43,6 +44,9 @@ struct Shape {
   std::shared_ptr<const TriMesh> mesh;                 // its triangles (null until loaded)
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();   // plane normal, shape frame
   Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  // shape frame in the link frame
+  // The link this shape was written on when fixed-joint lumping moved it into its parent ("" = its own link);
+  // that link's <gazebo reference> surface settings apply to it (RobotModel::surface).
+  std::string lumped_from;
 };
 
 // A URDF material: name and colour. has_rgba is false when none was given or urdfdom rejected it.
@@ -133,6 +137,25 @@ struct SensorSpec {
   ParamList params;           // everything else, flattened, e.g. "camera/image/width"
   std::vector<PluginSpec> plugins;
   int line = 0;               // line of <sensor> in the source document
+  std::string lumped_from;    // the link it was written on when lumping moved it to `link` ("" = none)
+};
+
+// A link merged into its parent by fixed-joint lumping, as sdformat's URDF reader does (docs/COMPAT-spawn.md).
+struct LumpedLink {
+  std::string name;
+  std::string parent;   // the kept link it now belongs to (after every lumping step)
+  std::string joint;    // the fixed joint that joined it to its URDF parent
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // its frame in the parent's frame
+  GazeboLinkExt gazebo; // its own <gazebo reference> settings: they apply to the shapes it brought
+  int line = 0;         // line of its <link>
+};
+
+// A link Gazebo does not model: massless (no <inertial> or mass 0) on a moving joint. Its subtree goes with it.
+struct DroppedLink {
+  std::string name;
+  std::string joint;                // its parent joint
+  std::vector<std::string> subtree; // links below it, dropped with it
+  int line = 0;
 };
 
 // A robot as the core sees it, with findings made while loading.
@@ -145,13 +168,27 @@ struct RobotModel {
   std::vector<PluginSpec> plugins;   // robot-level <gazebo><plugin>
   std::vector<SensorSpec> sensors;   // link-level <gazebo reference><sensor>
   std::vector<Diagnostic> diagnostics;
+  // Fixed-joint lumping and world anchoring (filled by the URDF loader).
+  std::vector<LumpedLink> lumped;
+  std::vector<DroppedLink> dropped;
+  std::set<std::string> preserved_fixed_joints;  // <gazebo reference=J><preserveFixedJoint> (or disable...)
+  std::vector<std::string> world_joints;         // joints from the link `world`: the model is anchored
 
   const Link* find_link(const std::string& name) const;
   const Joint* find_joint(const std::string& name) const;
   // The joint whose child is this link, or nullptr for the root.
   const Joint* parent_joint(const std::string& link) const;
   // Pose of a link's frame in the root link's frame, through the joints at zero position.
+  // Lumped links too (through their parent).
   Eigen::Isometry3d link_pose_in_root(const std::string& link) const;
+  // A lumped link by its URDF name, or nullptr.
+  const LumpedLink* find_lumped(const std::string& name) const;
+  // A link or a lumped link: the kept link that carries the frame and the frame's pose in it; false if neither.
+  bool resolve_frame(const std::string& name, std::string* link, Eigen::Isometry3d* pose_in_link) const;
+  // The <gazebo reference> surface settings that apply to a shape of link l (those of the link it came from).
+  const GazeboLinkExt& surface(const Link& l, const Shape& s) const;
+  // True when a joint from the link `world` anchors the model (fixed base).
+  bool anchored() const { return !world_joints.empty(); }
 };
 
 // Why mass properties cannot be simulated ("" when they can): mass <= 0, an inertia tensor that is not
@@ -162,7 +199,16 @@ struct LoadOptions {
   // Throw on the first Error-severity finding (a simulator must); false keeps every finding in
   // RobotModel::diagnostics (the model check wants them all). Unreadable XML always throws.
   bool throw_on_error = true;
+  // Fixed-joint lumping as sdformat's URDF reader does it (on in Gazebo; off only for tools that want the
+  // links as written).
+  bool lump_fixed_joints = true;
 };
+
+// The spawn service's namespace rule (gazebo_ros_api_plugin walkChildAddRobotNamespace): with a non-empty
+// robot_namespace, every <plugin> (robot-level and in sensors) that has no <robotNamespace> gets one with it;
+// an explicit one is kept. A sensor plug-in's explicitly empty <robotNamespace> means the model name
+// (gazebo_ros_utils GetRobotNamespace). See docs/COMPAT-spawn.md.
+void apply_robot_namespace(RobotModel* model, const std::string& robot_namespace, const std::string& model_name);
 
 // Loads a URDF document. Throws LoadError naming source, line (where known), element and reason.
 RobotModel load_urdf_string(const std::string& xml, const std::string& source_name = "<string>",

@@ -58,7 +58,7 @@ class World {
   double time() const { return static_cast<double>(tick_) * desc_.step_size; }  // [s]
 
   // Adds a robot with its plug-ins. Throws std::invalid_argument when the name exists, LoadError for a bad model.
-  // A non-empty robot_namespace overrides every plug-in's <robotNamespace>, as gazebo_ros does.
+  // A non-empty robot_namespace is added to every plug-in without <robotNamespace>, as gazebo_ros does.
   void spawn(const RobotModel& model, const std::string& name, const Eigen::Isometry3d& pose,
              const std::string& robot_namespace = "");
   // Adds a robot-level plug-in to a spawned robot (e.g. the ground-truth publisher the ROS node attaches).

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 
 import numpy as np
@@ -84,11 +85,36 @@ def _describe_shape(s: dict) -> str:
     return s['type']
 
 
+def mesh_findings(model: dict, base_dir: str) -> list:
+    """An error for each mesh URI that does not resolve (the simulator refuses such a robot)."""
+    core = _core()
+    out = []
+    for link in model['links']:
+        for kind in ('collisions', 'visuals'):
+            for i, s in enumerate(link[kind]):
+                shape = s.get('shape', s)
+                if shape.get('type') != 'mesh' or core.resolve_uri(shape['uri'], base_dir):
+                    continue
+                out.append({
+                    'severity': 'error', 'code': 'mesh-unresolved',
+                    'element': 'link[%s]/%s[%d]/mesh' % (link['name'], kind[:-1], i), 'line': 0,
+                    'message': "mesh '%s' not found (relative to '%s'; package:// through ROS_PACKAGE_PATH, "
+                               "model:// through GAZEBO_MODEL_PATH)" % (shape['uri'], base_dir or '.'),
+                })
+    return out
+
+
 def check_text(xml: str, source: str, tolerance: float = DEFAULT_INERTIA_TOLERANCE) -> dict:
-    """Runs every check on URDF text. Raises CheckInputError when the XML cannot be read."""
+    """Runs every check on URDF text. Raises CheckInputError when the XML cannot be read.
+
+    Findings include what the import does as Gazebo does it (docs/COMPAT-spawn.md): each lumped link (note),
+    each dropped link (warning), the `world` anchor (note); values that cannot be read carry their line.
+    """
     core = _core()
     try:
         r = core.inspect_urdf_string(xml, source)
+        # inertia is compared link by link as written, before lumping merges links
+        as_written = core.inspect_urdf_string(xml, source, lump_fixed_joints=False)['model']
     except core.LoadError as e:
         raise CheckInputError(str(e))
     model = r['model']
@@ -97,7 +123,9 @@ def check_text(xml: str, source: str, tolerance: float = DEFAULT_INERTIA_TOLERAN
         findings += r['config']['diagnostics']
     if r['config_error'] is not None:
         findings.append(r['config_error'])
-    findings += inertia_findings(model, tolerance)
+    findings += inertia_findings(as_written, tolerance)
+    base_dir = os.path.dirname(os.path.abspath(source)) if source and not source.startswith('<') else ''
+    findings += mesh_findings(model, base_dir)
     findings.sort(key=lambda f: (SEVERITY_ORDER[f['severity']], f['element']))
     counts = {s: sum(1 for f in findings if f['severity'] == s) for s in ('error', 'warning', 'info')}
     return {
@@ -106,6 +134,9 @@ def check_text(xml: str, source: str, tolerance: float = DEFAULT_INERTIA_TOLERAN
         'links': [_link_summary(l) for l in model['links']],
         'joints': [{k: j[k] for k in ('name', 'type', 'parent', 'child', 'axis')} for j in model['joints']],
         'plugins': r['config']['plugins'] if r['config'] else [],
+        'lumped': [{k: l[k] for k in ('name', 'parent', 'joint')} for l in model['lumped']],
+        'dropped': [{k: l[k] for k in ('name', 'joint', 'subtree')} for l in model['dropped']],
+        'world_joints': list(model['world_joints']),
         'findings': findings,
         'counts': counts,
     }
@@ -144,6 +175,14 @@ def format_report(report: dict) -> str:
             l['name'], '-' if l['mass'] is None else '%.4g kg' % l['mass'],
             '; '.join(l['collisions']) or 'no collision',
             ('  [%s]' % l['gazebo_material']) if l['gazebo_material'] else ''))
+    if report.get('world_joints'):
+        lines.append('  anchored to the world by: %s' % ', '.join(report['world_joints']))
+    if report.get('lumped'):
+        lines.append('  lumped (fixed joints, as Gazebo): %s' % ', '.join(
+            '%s -> %s' % (l['name'], l['parent']) for l in report['lumped']))
+    if report.get('dropped'):
+        lines.append('  dropped (no mass on a moving joint, as Gazebo): %s' % ', '.join(
+            l['name'] + (' (with %s)' % ', '.join(l['subtree']) if l['subtree'] else '') for l in report['dropped']))
     lines.append('  plug-ins:')
     if not report['plugins']:
         lines.append('    (none simulated)')

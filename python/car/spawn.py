@@ -20,8 +20,9 @@ class UsageError(Exception):
 
 def parse_args(argv: list) -> dict:
     """gazebo_ros's argument form, single-dash flags."""
+    # robot_namespace None = not given: main() puts the caller's namespace, as gazebo_ros's spawn_model does
     opts = {'x': 0.0, 'y': 0.0, 'z': 0.0, 'roll': 0.0, 'pitch': 0.0, 'yaw': 0.0, 'timeout': 60.0,
-            'robot_namespace': '', 'reference_frame': '', 'gazebo_namespace': '/gazebo', 'format': None,
+            'robot_namespace': None, 'reference_frame': '', 'gazebo_namespace': '/gazebo', 'format': None,
             'unpause': False, 'param': None, 'file': None, 'model': None}
     i = 0
     while i < len(argv):
@@ -59,6 +60,12 @@ def parse_args(argv: list) -> dict:
     return opts
 
 
+def default_robot_namespace() -> str:
+    """The caller's namespace, as gazebo_ros's spawn_model takes it: rospy.get_namespace()."""
+    import rospy
+    return rospy.get_namespace()
+
+
 def quaternion(roll: float, pitch: float, yaw: float):
     """(x, y, z, w) of R = Rz(yaw) Ry(pitch) Rx(roll)."""
     cr, sr = math.cos(roll / 2), math.sin(roll / 2)
@@ -81,6 +88,10 @@ def main(argv=None) -> int:
         print('spawn_model: error: %s' % e, file=sys.stderr)
         return 2
     rospy.init_node('spawn_model', anonymous=True)
+    if o['robot_namespace'] is None:
+        # gazebo_ros spawn_model: -robot_namespace defaults to rospy.get_namespace() ("/" at the root, "/r1/" in
+        # <group ns="r1">); the spawn service adds it to every plug-in without <robotNamespace>
+        o['robot_namespace'] = default_robot_namespace()
     if o['param'] is not None:
         if not rospy.has_param(o['param']):
             rospy.logfatal('spawn_model: parameter %s is not set', o['param'])

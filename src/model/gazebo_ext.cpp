@@ -12,6 +12,7 @@ namespace car_sim {
 using detail::flatten;
 using detail::parse_number;
 using detail::text_of;
+using detail::value_of;
 
 namespace {
 
@@ -29,30 +30,32 @@ PluginSpec read_plugin(const tinyxml2::XMLElement* p) {
   return spec;
 }
 
-// A number in a <gazebo> block; a bad one is an error naming the element.
+// A number in a <gazebo> block, from the `value` attribute or the text (value_of); a bad one is an error
+// naming the element.
 std::optional<double> number_in(RobotModel* m, const tinyxml2::XMLElement* e, const std::string& where) {
-  const auto v = parse_number(text_of(e));
-  if (!v)
-    note(m, Severity::Error, "gazebo-value", where, "'" + text_of(e) + "' is not a number", e->GetLineNum());
+  const std::string t = value_of(e);
+  const auto v = parse_number(t);
+  if (!v) note(m, Severity::Error, "gazebo-value", where, "'" + t + "' is not a number", e->GetLineNum());
   return v;
 }
 
 // Three numbers in a <gazebo> block (e.g. fdir1 "1 0 0"); anything else is an error naming the element.
 std::optional<Eigen::Vector3d> vector_in(RobotModel* m, const tinyxml2::XMLElement* e, const std::string& where) {
-  std::istringstream in(text_of(e));
+  std::istringstream in(value_of(e));
   Eigen::Vector3d v;
   std::string rest;
   if (in >> v.x() >> v.y() >> v.z() && !(in >> rest) && v.allFinite()) return v;
-  note(m, Severity::Error, "gazebo-value", where, "'" + text_of(e) + "' is not three numbers", e->GetLineNum());
+  note(m, Severity::Error, "gazebo-value", where, "'" + value_of(e) + "' is not three numbers", e->GetLineNum());
   return std::nullopt;
 }
 
+// A boolean as sdformat's URDF reader takes one: true/yes/1 (any case), and false/no/0.
 std::optional<bool> flag_in(RobotModel* m, const tinyxml2::XMLElement* e, const std::string& where) {
-  std::string t = text_of(e);
+  std::string t = value_of(e);
   for (auto& c : t) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (t == "true" || t == "1") return true;
-  if (t == "false" || t == "0") return false;
-  note(m, Severity::Error, "gazebo-value", where, "'" + text_of(e) + "' is not a boolean (true/false/1/0)",
+  if (t == "true" || t == "yes" || t == "1") return true;
+  if (t == "false" || t == "no" || t == "0") return false;
+  note(m, Severity::Error, "gazebo-value", where, "'" + value_of(e) + "' is not a boolean (true/false/yes/no/1/0)",
        e->GetLineNum());
   return std::nullopt;
 }
@@ -118,7 +121,7 @@ void read_link_block(RobotModel* m, const tinyxml2::XMLElement* g, Link* link) {
     } else if (tag == "plugin") {
       m->plugins.push_back(read_plugin(c));
     } else if (tag == "material") {
-      ext.material = text_of(c);
+      ext.material = value_of(c);
     } else if (tag == "mu1") {
       ext.mu1 = number_in(m, c, here);
     } else if (tag == "mu2") {
@@ -153,7 +156,7 @@ void read_link_block(RobotModel* m, const tinyxml2::XMLElement* g, Link* link) {
     } else if (c->FirstChildElement()) {
       flatten(c, tag, &ext.other);
     } else {
-      ext.other.emplace_back(tag, text_of(c));
+      ext.other.emplace_back(tag, value_of(c));
     }
   }
   for (const char* key : {"mu1", "mu2"}) {
@@ -169,6 +172,14 @@ void read_link_block(RobotModel* m, const tinyxml2::XMLElement* g, Link* link) {
       note(m, Severity::Error, "gazebo-value", where + "/" + key, "must be >= 0", g->GetLineNum());
   if (ext.kp && !(*ext.kp > 0.0))
     note(m, Severity::Error, "gazebo-value", where + "/kp", "contact stiffness must be > 0", g->GetLineNum());
+}
+
+// <preserveFixedJoint> and the older <disableFixedJointLumping> in a joint's block keep a fixed joint from
+// lumping (sdformat parser_urdf.cc; it turns the latter into a zero-range revolute joint, which moves the same).
+void read_joint_lumping(RobotModel* m, const tinyxml2::XMLElement* g, const std::string& joint) {
+  for (const char* key : {"preserveFixedJoint", "disableFixedJointLumping"})
+    for (auto* c = g->FirstChildElement(key); c; c = c->NextSiblingElement(key))
+      if (auto v = flag_in(m, c, "gazebo[" + joint + "]/" + key); v && *v) m->preserved_fixed_joints.insert(joint);
 }
 
 }  // namespace
@@ -188,6 +199,7 @@ void parse_gazebo_extensions(const tinyxml2::XMLElement* robot, RobotModel* m) {
     if (link) {
       read_link_block(m, g, link);
     } else if (m->find_joint(name)) {
+      read_joint_lumping(m, g, name);
       note(m, Severity::Info, "gazebo-joint", "gazebo[" + name + "]",
            "settings on joint '" + name + "' are accepted and not simulated", g->GetLineNum());
     } else {

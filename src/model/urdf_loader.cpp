@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "car_sim/model.hpp"
+#include "lumping.hpp"
 #include "xml_util.hpp"
 
 namespace car_sim {
@@ -98,6 +99,10 @@ const Joint* RobotModel::parent_joint(const std::string& link) const {
 Eigen::Isometry3d RobotModel::link_pose_in_root(const std::string& link) const {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   std::string cur = link;
+  if (const LumpedLink* l = find_lumped(link)) {
+    T = l->pose;
+    cur = l->parent;
+  }
   // A URDF tree has at most links.size() joints on any path to the root.
   for (size_t guard = 0; guard <= links.size(); ++guard) {
     const Joint* j = parent_joint(cur);
@@ -361,22 +366,25 @@ class Loader {
 
   // Mass properties the physics engine can use: positive mass, positive definite inertia obeying the
   // triangle inequalities of its principal moments.
+  // A link without <inertial> or with mass 0 is massless: lumped into its parent on a fixed joint, dropped on
+  // a moving one (lumping.cpp), never an error by itself.
   void check_inertials() {
     for (const auto& l : m_->links) {
       const int line = line_of("link", l.name);
       const std::string where = "link[" + l.name + "]/inertial";
-      if (!l.inertial) {
-        if (!l.collisions.empty())
-          add(Severity::Error, "inertial-missing", "link[" + l.name + "]",
-              "link has collision geometry but no <inertial>; Gazebo drops such a link", line);
-        continue;
-      }
+      if (!l.inertial || l.inertial->mass == 0.0) continue;
       const auto& in = *l.inertial;
       std::string code;
       const std::string why = inertial_problem(in.mass, in.inertia, &code);
       if (!why.empty())
         add(Severity::Error, code, code == "mass-nonpositive" ? where + "/mass" : where + "/inertia", why, line);
     }
+  }
+
+  std::map<std::string, int> link_lines() const {
+    std::map<std::string, int> out;
+    for (const auto& l : m_->links) out[l.name] = line_of("link", l.name);
+    return out;
   }
 
   std::string source_;
@@ -424,6 +432,13 @@ RobotModel load_urdf_string(const std::string& xml, const std::string& source_na
   loader.check_fixed_axes(robot);
   loader.check_inertials();
   parse_gazebo_extensions(robot, &model);
+  // As sdformat's URDF reader: anchor to `world`, lump fixed joints, drop massless links on moving joints.
+  detail::find_world_anchor(&model);
+  if (options.lump_fixed_joints) {
+    const auto lines = loader.link_lines();
+    detail::lump_fixed_joints(&model, lines);
+    detail::drop_massless_links(&model, lines);
+  }
 
   if (options.throw_on_error) {
     for (const auto& d : model.diagnostics)

@@ -67,6 +67,12 @@ std::string text_of(const tinyxml2::XMLElement* e) {
   return trim(e->GetText());
 }
 
+std::string value_of(const tinyxml2::XMLElement* e) {
+  if (!e) return "";
+  if (const char* v = e->Attribute("value")) return trim(v);
+  return text_of(e);
+}
+
 void flatten(const tinyxml2::XMLElement* e, const std::string& prefix, ParamList* out) {
   for (auto* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
     const std::string key = prefix.empty() ? c->Name() : prefix + "/" + c->Name();

@@ -29,6 +29,10 @@ std::optional<Eigen::Isometry3d> parse_pose6(const std::string& text);
 // Text of an element, trimmed; "" for none.
 std::string text_of(const tinyxml2::XMLElement* e);
 
+// A <gazebo> value as sdformat's URDF reader takes it (GetKeyValueAsString in parser_urdf.cc): the `value`
+// attribute when there is one (<mu1 value="0.5"/>), else the element's text (<mu1>0.5</mu1>); trimmed.
+std::string value_of(const tinyxml2::XMLElement* e);
+
 // Appends every leaf element below e as "a/b/c" -> text, in document order.
 void flatten(const tinyxml2::XMLElement* e, const std::string& prefix, ParamList* out);
 

@@ -79,10 +79,18 @@ BodyTree build_bodies(const RobotModel& m) {
     for (const auto& link : b.links) {
       const Link* l = m.find_link(link);
       if (l->inertial) accumulate(*l->inertial, t.link_in_top[link], &ms, &cs, &is);
-      const double mu = l->gazebo.mu1.value_or(1.0);
-      for (const auto& s : l->collisions) b.shapes.push_back({s, t.link_in_top[link] * s.origin, mu, l});
+      // a lumped link's shapes keep its own surface settings (RobotModel::surface)
+      for (const auto& s : l->collisions) {
+        const GazeboLinkExt& gz = m.surface(*l, s);
+        b.shapes.push_back({s, t.link_in_top[link] * s.origin, gz.mu1.value_or(1.0), l, &gz});
+      }
     }
     for (double x : ms) b.mass += x;
+    // an anchored model's root body is the world's: fixed, no mass of its own (Gazebo's `world` link)
+    if (parent < 0 && top == "world" && m.anchored()) {
+      t.bodies.push_back(std::move(b));
+      continue;
+    }
     if (!(b.mass > 0.0))
       throw LoadError(m.source, 0, "link[" + top + "]",
                       "the body of link '" + top + "' (with the links fixed to it) has no mass");
@@ -96,6 +104,13 @@ BodyTree build_bodies(const RobotModel& m) {
     b.top_to_com.linear() = principal_axes(b.inertia, &b.principal);
     b.top_to_com.translation() = b.com;
     t.bodies.push_back(std::move(b));
+  }
+  // links lumped into a kept one (RobotModel::lumped) stay frames of its body, for plug-ins naming them
+  for (const auto& l : m.lumped) {
+    const auto it = t.body_of_link.find(l.parent);
+    if (it == t.body_of_link.end()) continue;
+    t.body_of_link[l.name] = it->second;
+    t.link_in_top[l.name] = t.link_in_top[l.parent] * l.pose;
   }
   return t;
 }

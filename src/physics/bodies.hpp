@@ -15,7 +15,8 @@ struct BodyShape {
   Shape shape;                      // shape.origin is in the link frame it came from
   Eigen::Isometry3d in_top;         // shape frame in the body's top-link frame
   double mu = 1.0;                  // friction of the link it came from
-  const Link* link = nullptr;       // the link it came from (its <gazebo> surface settings)
+  const Link* link = nullptr;       // the link it holds the shape (after lumping)
+  const GazeboLinkExt* gz = nullptr;  // <gazebo> surface settings of the link the shape came from
 };
 
 struct Body {

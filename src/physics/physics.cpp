@@ -266,7 +266,9 @@ class BulletRobot : public Robot {
       : P_(P), model_(model), name_(name), tree_(detail::build_bodies(model_)) {
     const int n_links = static_cast<int>(tree_.bodies.size()) - 1;
     const Body& base = tree_.bodies[0];
-    mb_ = std::make_unique<btMultiBody>(n_links, base.mass, bt(base.principal), false, false);
+    // a model anchored to `world` has a fixed base (btMultiBody fixedBase)
+    const bool fixed_base = model_.anchored() && base.top == "world";
+    mb_ = std::make_unique<btMultiBody>(n_links, base.mass, bt(base.principal), fixed_base, false);
     btMultiBody* mb = mb_.get();
     mb->setBaseWorldTransform(bt(pose * base.top_to_com));
     mb->setLinearDamping(0.0);
@@ -330,7 +332,7 @@ class BulletRobot : public Robot {
       for (int k : kept) {
         // fdir1 is given in the collision frame: rotate it into the collider (com) frame
         const Eigen::Matrix3d R = (b.top_to_com.inverse() * from[k]->in_top).linear();
-        Surface sf = link_surface(from[k]->link->gazebo, R);
+        Surface sf = link_surface(*from[k]->gz, R);
         if (is_ball_caster(b, driven)) sf.mu1 = sf.mu2 = 0.0;
         surfaces->shapes.push_back(sf);
       }
@@ -344,7 +346,14 @@ class BulletRobot : public Robot {
       col->setRestitution(0.0);
       P_.attach(col.get(), std::move(surfaces));
       P_.name_object(col.get(), name_ + "/" + b.top);
-      P_.world.addCollisionObject(col.get(), btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
+      if (i == 0 && fixed_base) {
+        // a fixed base is static: it touches moving things only
+        col->setCollisionFlags(col->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT);
+        P_.world.addCollisionObject(col.get(), btBroadphaseProxy::StaticFilter,
+                                    btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter);
+      } else {
+        P_.world.addCollisionObject(col.get(), btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
+      }
       if (i == 0)
         mb->setBaseCollider(col.get());
       else

@@ -181,6 +181,29 @@ py::dict model_dict(const RobotModel& m) {
   d["plugins"] = plugins;
   d["sensors"] = sensors;
   d["diagnostics"] = diags;
+  // what the URDF import lumped, dropped and anchored (docs/COMPAT-spawn.md)
+  py::list lumped;
+  for (const auto& l : m.lumped) {
+    py::dict e;
+    e["name"] = l.name;
+    e["parent"] = l.parent;
+    e["joint"] = l.joint;
+    e["pose"] = pose(l.pose);
+    e["line"] = l.line;
+    lumped.append(e);
+  }
+  d["lumped"] = lumped;
+  py::list dropped;
+  for (const auto& l : m.dropped) {
+    py::dict e;
+    e["name"] = l.name;
+    e["joint"] = l.joint;
+    e["subtree"] = l.subtree;
+    e["line"] = l.line;
+    dropped.append(e);
+  }
+  d["dropped"] = dropped;
+  d["world_joints"] = m.world_joints;
   return d;
 }
 
@@ -354,9 +377,10 @@ PYBIND11_MODULE(_core, m) {
       py::arg("path"), py::arg("throw_on_error") = true, "Load a URDF file; returns the model as a dict.");
   m.def(
       "inspect_urdf_string",
-      [](const std::string& xml, const std::string& source) {
+      [](const std::string& xml, const std::string& source, bool lump_fixed_joints) {
         LoadOptions o;
         o.throw_on_error = false;
+        o.lump_fixed_joints = lump_fixed_joints;
         const RobotModel model = load_urdf_string(xml, source, o);
         py::dict out;
         out["model"] = model_dict(model);
@@ -376,7 +400,7 @@ PYBIND11_MODULE(_core, m) {
         }
         return out;
       },
-      py::arg("xml"), py::arg("source") = "<string>",
+      py::arg("xml"), py::arg("source") = "<string>", py::arg("lump_fixed_joints") = true,
       "Load a URDF keeping every finding, and resolve its plug-ins: {model, config, config_error}.");
   m.def(
       "plugin_schema",

@@ -32,9 +32,13 @@ bool SimNode::spawn(car::SpawnModel::Request& req, car::SpawnModel::Response& re
   }
   try {
     const car_sim::RobotModel model = car_sim::load_urdf_string(req.model_xml, req.model_name);
-    for (const auto& d : model.diagnostics)
+    for (const auto& d : model.diagnostics) {
       if (d.severity == car_sim::Severity::Warning)
         ROS_WARN("car: %s: %s: %s", req.model_name.c_str(), d.element.c_str(), d.message.c_str());
+      // what the URDF import did to the links, one line each (docs/COMPAT-spawn.md)
+      else if (d.code == "link-lumped" || d.code == "world-anchor")
+        ROS_INFO("car: %s: %s", req.model_name.c_str(), d.message.c_str());
+    }
     world_->spawn(model, req.model_name, from_pose(req.initial_pose), req.robot_namespace);
     for (const auto& d : world_->robot(req.model_name).config.diagnostics)
       if (d.severity == car_sim::Severity::Warning)

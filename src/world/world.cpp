@@ -157,18 +157,8 @@ void World::spawn(const RobotModel& model, const std::string& name, const Eigen:
   r->info.robot_namespace = robot_namespace;
   r->info.model = model;
   r->info.spawn_pose = pose;
-  if (!robot_namespace.empty()) {
-    // gazebo_ros's spawn: the namespace given at spawn replaces every plug-in's <robotNamespace>
-    auto set_ns = [&](PluginSpec& p) {
-      bool found = false;
-      for (auto& kv : p.params)
-        if (kv.first == "robotNamespace") kv.second = robot_namespace, found = true;
-      if (!found) p.params.emplace_back("robotNamespace", robot_namespace);
-    };
-    for (auto& p : r->info.model.plugins) set_ns(p);
-    for (auto& s : r->info.model.sensors)
-      for (auto& p : s.plugins) set_ns(p);
-  }
+  // gazebo_ros's spawn: plug-ins without <robotNamespace> get the spawn namespace (docs/COMPAT-spawn.md)
+  apply_robot_namespace(&r->info.model, robot_namespace, name);
   load_meshes(&r->info.model, source_dir(model.source));
   r->info.config = resolve_plugins(r->info.model);
   for (const auto& c : r->info.config.plugins) r->plugins.push_back(impl_->make_instance(*r, c));

@@ -82,7 +82,10 @@ def test_cli_json_parses_and_exits_zero():
     assert r.returncode == 0, r.stderr
     data = json.loads(r.stdout)
     assert data['robot'] == 'mycar'
-    assert len(data['links']) == 9
+    # 9 links as written; base_link, camera, support and laser hang on fixed joints and are lumped into
+    # base_footprint as Gazebo does, leaving the root and the four wheel/caster links
+    assert len(data['links']) == 5
+    assert sorted(l['name'] for l in data['lumped']) == ['base_link', 'camera', 'laser', 'support']
     assert data['exit_code'] == 0
 
 
@@ -102,7 +105,9 @@ def test_cli_strict_exits_one():
 def test_zero_mass_is_an_error_exit_2():
     r = run_tool('check_model', os.path.join(DATA, 'bad', 'zero_mass.urdf'))
     assert r.returncode == 2
-    assert 'error   link[base_link]/inertial/mass (line 3): mass 0 kg is not > 0' in r.stdout
+    # mass 0 is massless for Gazebo: on the root (nothing fixed to it) nothing of the robot is left
+    assert ("error   link[base_link] (line 3): root link 'base_link' has no mass (no <inertial> or mass 0), also "
+            "after lumping the links fixed to it; Gazebo models nothing of this robot") in r.stdout
 
 
 def test_zero_axis_is_an_error_exit_2():
@@ -137,3 +142,74 @@ def test_xacro_error_exit_2():
     r = run_tool('check_model', os.path.join(DATA, 'bad', 'undefined_property.xacro'), '--json')
     assert r.returncode == 2
     assert "undefined property or name 'base_radius'" in json.loads(r.stdout)['error']
+
+
+# ---- the import as Gazebo does it (docs/COMPAT-spawn.md) ------------------------------------------------
+
+ZOO = os.path.join(DATA, 'zoo')
+
+
+def check_zoo(name):
+    path = os.path.join(ZOO, name)
+    with open(path) as f:
+        return model_check.check_text(f.read(), path)
+
+
+def test_lumped_links_are_reported_as_notes():
+    r = check_zoo('lumping.urdf')
+    f = finding(r, 'link-lumped', 'link[camera_link]')
+    assert f['severity'] == 'info'
+    assert f['line'] == 9
+    assert {l['name']: l['parent'] for l in r['lumped']} == {'camera_link': 'base', 'imu_link': 'base', 'tool': 'base'}
+
+
+def test_dropped_link_is_a_warning_naming_its_subtree():
+    r = check_zoo('lumping.urdf')
+    f = finding(r, 'link-dropped', 'link[flap]')
+    assert f['severity'] == 'warning'
+    assert r['dropped'] == [{'name': 'flap', 'joint': 'flap_joint', 'subtree': ['flap_tip']}]
+    assert model_check.format_report(r).count('dropped (no mass on a moving joint, as Gazebo): flap (with flap_tip)') == 1
+
+
+def test_world_anchor_is_reported():
+    r = check_zoo('arm.urdf')
+    assert r['world_joints'] == ['world_fix']
+    assert finding(r, 'world-anchor', 'joint[world_fix]')['severity'] == 'info'
+    assert 'anchored to the world by: world_fix' in model_check.format_report(r)
+
+
+def test_unresolved_mesh_is_an_error():
+    xml = ("<robot name='m'><link name='a'><inertial><mass value='1'/><inertia ixx='1' ixy='0' ixz='0' iyy='1' "
+           "iyz='0' izz='1'/></inertial><collision><geometry><mesh filename='meshes/nowhere.stl'/></geometry>"
+           "</collision></link></robot>")
+    r = model_check.check_text(xml, os.path.join(ZOO, 'virtual.urdf'))
+    f = finding(r, 'mesh-unresolved', 'link[a]/collision[0]/mesh')
+    assert f['severity'] == 'error'
+    assert "mesh 'meshes/nowhere.stl' not found" in f['message']
+    assert model_check.exit_code(r, strict=False) == 2
+
+
+def test_resolved_zoo_mesh_is_not_reported():
+    # cube.obj sits in test/data/zoo/meshes/: the relative URI resolves against the file's folder
+    xml = ("<robot name='m'><link name='a'><inertial><mass value='1'/><inertia ixx='1' ixy='0' ixz='0' iyy='1' "
+           "iyz='0' izz='1'/></inertial><collision><geometry><mesh filename='meshes/cube.obj'/></geometry>"
+           "</collision></link></robot>")
+    r = model_check.check_text(xml, os.path.join(ZOO, 'virtual.urdf'))
+    assert [f for f in r['findings'] if f['code'] == 'mesh-unresolved'] == []
+
+
+def test_unreadable_attribute_value_is_reported_with_its_line():
+    xml = ("<robot name='m'>\n<link name='a'><inertial><mass value='1'/><inertia ixx='1' ixy='0' ixz='0' "
+           "iyy='1' iyz='0' izz='1'/></inertial></link>\n<gazebo reference='a'>\n<mu1 value='slippery'/>\n"
+           "</gazebo></robot>")
+    r = model_check.check_text(xml, 'values.urdf')
+    f = finding(r, 'gazebo-value', 'gazebo[a]/mu1')
+    assert (f['severity'], f['line'], f['message']) == ('error', 4, "'slippery' is not a number")
+
+
+def test_attribute_form_values_are_read():
+    xml = ("<robot name='m'><link name='a'><inertial><mass value='1'/><inertia ixx='1' ixy='0' ixz='0' "
+           "iyy='1' iyz='0' izz='1'/></inertial></link><gazebo reference='a'><mu1 value='0.5'/>"
+           "<kp value='1e7'/></gazebo></robot>")
+    r = model_check.check_text(xml, 'values.urdf')
+    assert [f for f in r['findings'] if f['severity'] == 'error'] == []

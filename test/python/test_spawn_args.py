@@ -33,3 +33,9 @@ def test_yaw_quaternion():
 def test_bad_arguments(args, message):
     with pytest.raises(spawn.UsageError, match=message):
         spawn.parse_args(args.split())
+
+
+def test_robot_namespace_not_given_is_left_for_the_callers_namespace():
+    # gazebo_ros: the default is rospy.get_namespace(), filled in by main() once the node knows its namespace
+    o = spawn.parse_args('-urdf -param robot_description -model b'.split())
+    assert o['robot_namespace'] is None
