@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "car_sim/model.hpp"
+#include "validate.hpp"
 #include "xml_util.hpp"
 
 namespace car_sim {
@@ -405,6 +406,7 @@ RobotModel load_urdf_string(const std::string& xml, const std::string& source_na
     throw LoadError(source_name, robot ? robot->GetLineNum() : 0, robot ? robot->Name() : "",
                     "root element is not <robot>; is this a URDF?");
 
+  std::vector<Diagnostic> checked = detail::validate_urdf(doc, source_name);  // validate.cpp: throws on unusable numbers
   CaptureHandler capture;
   console_bridge::useOutputHandler(&capture);
   const urdf::ModelInterfaceSharedPtr u = urdf::parseURDF(xml);
@@ -417,6 +419,7 @@ RobotModel load_urdf_string(const std::string& xml, const std::string& source_na
 
   RobotModel model;
   model.source = source_name;
+  model.diagnostics = std::move(checked);
   Loader loader(source_name, &model);
   loader.index_lines(robot);
   loader.convert(*u, robot);
