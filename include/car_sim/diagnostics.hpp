@@ -37,4 +37,11 @@ class LoadError : public std::runtime_error {
   std::string reason_;
 };
 
+// Thrown by World::step when a body's state turned non-finite (a blow-up): what() names the body, the value and
+// the sim time; the world stays stopped there (every later step throws too) until it is reset or the model removed.
+class SimulationError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 }  // namespace car_sim

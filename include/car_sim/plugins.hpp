@@ -3,6 +3,7 @@
 // this header is what the loader, the model check and the skins see. No ROS headers.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,10 @@ struct ParamDef {
   ParamType type;
   const char* default_value;
   const char* unit;  // "" when dimensionless
+  // [unit] stated limits of a Number or Integer key: a value outside is a load error naming the key and the limit,
+  // raised before any instance allocates from it
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
 };
 
 // A key with the value it resolved to.

@@ -40,6 +40,8 @@ def load_text(path: str, mappings: dict | None = None) -> str:
             return f.read()
     except OSError as e:
         raise CheckInputError('%s: %s' % (path, e.strerror.lower() if e.strerror else e))
+    except UnicodeDecodeError as e:
+        raise CheckInputError('%s: not UTF-8 text (byte 0x%02x at offset %d)' % (path, e.object[e.start], e.start))
 
 
 def _fmt_tensor(m) -> list:
@@ -125,7 +127,11 @@ def check_text(xml: str, source: str, tolerance: float = DEFAULT_INERTIA_TOLERAN
         findings.append(r['config_error'])
     findings += inertia_findings(as_written, tolerance)
     base_dir = os.path.dirname(os.path.abspath(source)) if source and not source.startswith('<') else ''
-    findings += mesh_findings(model, base_dir)
+    unresolved = mesh_findings(model, base_dir)
+    findings += unresolved
+    # a mesh that resolves but cannot be read is the spawn's load error
+    if not unresolved and r.get('mesh_error') is not None:
+        findings.append(r['mesh_error'])
     findings.sort(key=lambda f: (SEVERITY_ORDER[f['severity']], f['element']))
     counts = {s: sum(1 for f in findings if f['severity'] == s) for s in ('error', 'warning', 'info')}
     return {

@@ -11,6 +11,7 @@ from __future__ import annotations
 import copy
 import math
 import os
+import sys
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -203,10 +204,13 @@ def flatten(path: str) -> ET.ElementTree:
     if world is None:
         raise WorldError(path, 'sdf', 'no <world>')
     where = 'world[%s]' % world.get('name')
-    _expand(world, os.path.dirname(os.path.abspath(path)), path, where)
-    _hoist_nested(world)
-    _apply_state(world)
-    ET.indent(tree, space='  ')
+    try:
+        _expand(world, os.path.dirname(os.path.abspath(path)), path, where)
+        _hoist_nested(world)
+        _apply_state(world)
+        ET.indent(tree, space='  ')
+    except RecursionError:
+        raise WorldError(path, where, 'elements nest too deep to read (more than %d levels)' % sys.getrecursionlimit())
     return tree
 
 
@@ -279,6 +283,7 @@ def check(path: str, inertia_tolerance: float = 0.10) -> dict:
                 findings.append(_finding('error', 'world-load', '', str(e).split(': ', 1)[-1]))
                 desc = None
             if desc is not None:
+                findings += [dict(f) for f in desc.get('diagnostics', [])]
                 wname = 'world[%s]' % desc['name']
                 for m in desc['models']:
                     prefix = '%s/model[%s]/' % (wname, m['name'])

@@ -11,6 +11,7 @@
 
 #include "car_sim/description.hpp"
 #include "car_sim/mesh.hpp"
+#include "validate.hpp"
 #include "xml_util.hpp"
 
 namespace car_sim {
@@ -221,7 +222,6 @@ WorldDescription convert(const sdf::Root& root, const std::string& source) {
     d.step_size = ph->MaxStepSize();
     d.real_time_factor = ph->RealTimeFactor();
   }
-  if (!(d.step_size > 0.0)) throw LoadError(source, 0, "world/physics/max_step_size", "step size must be > 0");
   if (const sdf::Scene* sc = w->Scene()) {
     d.ambient = (sc->Ambient().R() + sc->Ambient().G() + sc->Ambient().B()) / 3.0;
     d.background = Eigen::Vector3d(sc->Background().R(), sc->Background().G(), sc->Background().B());
@@ -237,6 +237,7 @@ WorldDescription convert(const sdf::Root& root, const std::string& source) {
   }
   for (uint64_t i = 0; i < w->ModelCount(); ++i) add_model(*w->ModelByIndex(i), "", Eigen::Isometry3d::Identity(), false, &d);
   apply_state(*w, &d);
+  detail::validate_world(&d);  // validate.cpp: step size, gravity, poses, masses, shape sizes
   for (const auto& m : d.models) {
     if (m.is_static) continue;
     for (const auto& l : m.links) {
@@ -302,6 +303,7 @@ sdf::ParserConfig parser_config(const std::string& world_file) {
 WorldDescription load_world_file(const std::string& path) {
   std::ifstream probe(path);
   if (!probe) throw LoadError(path, 0, "", "cannot open file");
+  detail::prevalidate_sdf(std::string(std::istreambuf_iterator<char>(probe), {}), path, path.find('/') == std::string::npos ? "." : path.substr(0, path.rfind('/')));
   sdf::Root root;
   const sdf::Errors errors = root.Load(path, parser_config(path));
   if (!errors.empty()) fail_with(path, errors);
@@ -311,6 +313,7 @@ WorldDescription load_world_file(const std::string& path) {
 }
 
 WorldDescription load_world_string(const std::string& xml, const std::string& source_name) {
+  detail::prevalidate_sdf(xml, source_name, "");  // validate.cpp
   sdf::Root root;
   const sdf::Errors errors = root.LoadSdfString(xml, parser_config(""));
   if (!errors.empty()) fail_with(source_name, errors);

@@ -13,6 +13,7 @@
 
 #include "car_sim/model.hpp"
 #include "lumping.hpp"
+#include "validate.hpp"
 #include "xml_util.hpp"
 
 namespace car_sim {
@@ -413,6 +414,7 @@ RobotModel load_urdf_string(const std::string& xml, const std::string& source_na
     throw LoadError(source_name, robot ? robot->GetLineNum() : 0, robot ? robot->Name() : "",
                     "root element is not <robot>; is this a URDF?");
 
+  std::vector<Diagnostic> checked = detail::validate_urdf(doc, source_name);  // validate.cpp: throws on unusable numbers
   CaptureHandler capture;
   console_bridge::useOutputHandler(&capture);
   const urdf::ModelInterfaceSharedPtr u = urdf::parseURDF(xml);
@@ -425,6 +427,7 @@ RobotModel load_urdf_string(const std::string& xml, const std::string& source_na
 
   RobotModel model;
   model.source = source_name;
+  model.diagnostics = std::move(checked);
   Loader loader(source_name, &model);
   loader.index_lines(robot);
   loader.convert(*u, robot);

@@ -17,6 +17,7 @@
 #include <stdexcept>
 
 #include "bodies.hpp"
+#include "guard.hpp"
 #include "materials.hpp"
 #include "surface.hpp"
 
@@ -784,6 +785,7 @@ void Physics::step(double dt) {
   // physics: one fixed step, no internal substepping
   impl_->world.stepSimulation(dt, 0, dt);
   ++impl_->steps;
+  if (const std::string bad = first_non_finite(impl_->world, impl_->object_names); !bad.empty()) throw NonFiniteState(bad);
 }
 
 std::optional<ModelState> Physics::world_model_state(const std::string& name) const {

@@ -27,6 +27,25 @@ std::string strip_slash(const std::string& s) {
   return s.substr(i);
 }
 
+std::string limit_text(double v, const char* unit) {
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str() + (*unit ? std::string(" ") + unit : "");
+}
+
+// A value outside its key's stated limits: a load error naming the key, the value and the limit.
+void check_limits(const RobotModel& m, const ParamDef& def, const std::string& value, const std::string& elem,
+                  int line) {
+  const double v = *detail::parse_number(value);
+  if (v > def.max)
+    throw LoadError(m.source, line, elem,
+                    std::string(def.key) + " " + detail::trim(value) + " is above the limit " + limit_text(def.max, def.unit));
+  if (v < def.min)
+    throw LoadError(m.source, line, elem,
+                    std::string(def.key) + " " + detail::trim(value) + " is below the limit " + limit_text(def.min, def.unit));
+}
+
 // Resolves schema keys from params; bad values are load errors naming element and key.
 void resolve_keys(const RobotModel& m, const std::vector<ParamDef>& schema, const ParamList& params,
                   const std::string& where, int line, std::vector<ResolvedParam>* out) {
@@ -41,10 +60,12 @@ void resolve_keys(const RobotModel& m, const std::vector<ParamDef>& schema, cons
     switch (def.type) {
       case ParamType::Number:
         if (!detail::parse_number(rp.value)) throw LoadError(m.source, line, elem, "'" + rp.value + "' is not a number");
+        check_limits(m, def, rp.value, elem, line);
         break;
       case ParamType::Integer: {
         const auto n = detail::parse_number(rp.value);
         if (!n || std::floor(*n) != *n) throw LoadError(m.source, line, elem, "'" + rp.value + "' is not an integer");
+        check_limits(m, def, rp.value, elem, line);
         break;
       }
       case ParamType::Flag: {

@@ -4,6 +4,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include "car_sim/mesh.hpp"
 #include "car_sim/model.hpp"
 #include "car_sim/plugin.hpp"
 #include "car_sim/plugins.hpp"
@@ -349,6 +350,9 @@ py::dict world_dict(const WorldDescription& d) {
     models.append(md);
   }
   out["models"] = models;
+  py::list diags;  // what the loader found (e.g. masses outside the stated range)
+  for (const auto& x : d.diagnostics) diags.append(diagnostic(x));
+  out["diagnostics"] = diags;
   return out;
 }
 
@@ -357,6 +361,8 @@ py::dict world_dict(const WorldDescription& d) {
 PYBIND11_MODULE(_core, m) {
   m.doc() = "car_sim core: URDF model loading and plug-in configuration (no ROS).";
   py::register_exception<LoadError>(m, "LoadError", PyExc_ValueError);
+  // a body whose state turned non-finite stops the world: car._core.SimulationError (a RuntimeError)
+  py::register_exception<SimulationError>(m, "SimulationError", PyExc_RuntimeError);
 
   m.def(
       "load_urdf_string",
@@ -397,6 +403,21 @@ PYBIND11_MODULE(_core, m) {
           err["message"] = e.reason();
           err["line"] = e.line();
           out["config_error"] = err;
+        }
+        // A mesh that cannot be found or read is the spawn's load error: an error finding here.
+        out["mesh_error"] = py::none();
+        try {
+          RobotModel with_meshes = model;
+          const auto slash = source.rfind('/');
+          load_meshes(&with_meshes, slash == std::string::npos ? "" : source.substr(0, slash));
+        } catch (const LoadError& e) {
+          py::dict err;
+          err["severity"] = "error";
+          err["code"] = "mesh-load";
+          err["element"] = e.element();
+          err["message"] = e.reason();
+          err["line"] = e.line();
+          out["mesh_error"] = err;
         }
         return out;
       },

@@ -75,7 +75,14 @@ void SimNode::run() {
       tick0 = world_->tick();
       was_paused = false;
     }
-    world_->step(1);
+    try {
+      world_->step(1);
+    } catch (const car_sim::SimulationError& e) {
+      // a body blew up: stop rather than publish NaN (the guard in the core names the body)
+      ROS_ERROR("car: %s; physics paused (call reset_simulation or delete_model, then unpause_physics)", e.what());
+      paused_ = true;
+      continue;
+    }
     publish_outputs();
     if (rtf_ > 0.0) {
       const double sim_elapsed = static_cast<double>(world_->tick() - tick0) * world_->dt();

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "car_sim/mesh.hpp"
+#include "guard.hpp"
 #include "physics.hpp"
 
 namespace car_sim {
@@ -152,6 +153,7 @@ void World::spawn(const RobotModel& model, const std::string& name, const Eigen:
                   const std::string& robot_namespace) {
   if (name.empty()) throw std::invalid_argument("a model needs a name");
   if (has_model(name)) throw std::invalid_argument("model '" + name + "' exists already");
+  if (!pose.matrix().allFinite()) throw std::invalid_argument("the pose to spawn '" + name + "' at is not finite");
   auto r = std::make_unique<Impl::RobotRt>();
   r->info.name = name;
   r->info.robot_namespace = robot_namespace;
@@ -202,7 +204,13 @@ void World::step(uint64_t n) {
     ctx.tick = tick_;
     for (auto& r : impl_->robots)
       for (auto& i : r->plugins) i.plugin->pre_physics(ctx, *r);
-    impl_->phys->step(dt);
+    try {
+      impl_->phys->step(dt);
+    } catch (const physics::NonFiniteState& e) {
+      ++tick_;
+      throw SimulationError("t = " + std::to_string(time()) + " s: " + e.what() +
+                            " is not finite; the world stops here (reset it, or delete the model)");
+    }
     ctx.tick = ++tick_;
     for (auto& r : impl_->robots) {
       for (auto& i : r->plugins) {
@@ -263,6 +271,8 @@ ModelState World::model_state(const std::string& name) const {
 }
 
 void World::set_model_state(const std::string& name, const ModelState& st) {
+  if (!st.pose.matrix().allFinite() || !st.linear.allFinite() || !st.angular.allFinite())
+    throw std::invalid_argument("the state to set for '" + name + "' is not finite");
   if (auto* r = impl_->find(name)) {
     r->body->set_root_state(st);
   } else if (!impl_->phys->set_world_model_state(name, st)) {

@@ -15,6 +15,12 @@ constexpr ParamType Fr = ParamType::Frame;
 constexpr ParamType N = ParamType::Number;
 constexpr ParamType I = ParamType::Integer;
 constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr double kInfD = std::numeric_limits<double>::infinity();
+// Stated limits, checked before anything is allocated: rays per scan (samples x resolution; a scan holds 40 bytes a
+// ray) and rays per second (rays per scan x update_rate).
+constexpr double kMaxSamples = 100000;
+constexpr double kMaxRaysPerScan = 100000;
+constexpr double kMaxRaysPerSecond = 1e8;
 
 class Laser : public Plugin {
  public:
@@ -92,6 +98,13 @@ void finish(ResolveContext& ctx) {
   if (c.number("ray/scan/horizontal/samples") < 1) ctx.fail_sensor("ray/scan/horizontal/samples", "samples must be >= 1");
   if (!(c.number("ray/scan/horizontal/resolution") > 0))
     ctx.fail_sensor("ray/scan/horizontal/resolution", "resolution must be > 0");
+  const double rays = c.number("ray/scan/horizontal/samples") * c.number("ray/scan/horizontal/resolution");
+  if (rays > kMaxRaysPerScan)
+    ctx.fail_sensor("ray/scan/horizontal/resolution", "samples x resolution = " + std::to_string(static_cast<long long>(rays)) +
+                                                          " rays per scan is above the limit 100000");
+  if (rays * c.number("update_rate") > kMaxRaysPerSecond)
+    ctx.fail_sensor("update_rate", "samples x resolution x update_rate = " + std::to_string(static_cast<long long>(rays * c.number("update_rate"))) +
+                                       " rays/s is above the limit 1e8 rays/s");
   if (c.number("ray/scan/horizontal/min_angle") > c.number("ray/scan/horizontal/max_angle"))
     ctx.fail_sensor("ray/scan/horizontal/min_angle", "min_angle " + c.text("ray/scan/horizontal/min_angle") +
                                                          " > max_angle " + c.text("ray/scan/horizontal/max_angle"));
@@ -125,8 +138,8 @@ const PluginKind& laser_kind() {
     // SDF 1.6 defaults
     k.sensor_schema = {
         {"update_rate", N, "0", "Hz"},
-        {"ray/scan/horizontal/samples", I, "640", ""},
-        {"ray/scan/horizontal/resolution", N, "1", ""},
+        {"ray/scan/horizontal/samples", I, "640", "", -kInfD, kMaxSamples},
+        {"ray/scan/horizontal/resolution", N, "1", "", -kInfD, kMaxSamples},
         {"ray/scan/horizontal/min_angle", N, "0", "rad"},
         {"ray/scan/horizontal/max_angle", N, "0", "rad"},
         {"ray/range/min", N, "0", "m"},

@@ -1,0 +1,444 @@
+// Limits and validation before allocation: the numbers of a URDF (before urdfdom) and of an SDF world (before
+// and after sdformat). urdfdom reads an unparsable number as 0 or refuses the model with a console line about
+// something else; sdformat says only "Error reading element"; so the reasons are found here, with the value as
+// written.
+#include "validate.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "xml_util.hpp"
+
+namespace car_sim {
+namespace detail {
+
+namespace {
+
+std::string num(double v) {
+  std::ostringstream os;
+  os.precision(6);
+  os << v;
+  return os.str();
+}
+
+// One finite number: strtod over the whole text (an underflow to a denormal or 0 is fine, an overflow is not).
+bool finite_number(const std::string& tok, double* out) {
+  if (tok.empty()) return false;
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(tok.c_str(), &end);
+  if (end != tok.c_str() + tok.size() || !std::isfinite(v)) return false;
+  *out = v;
+  return true;
+}
+
+// A DOCTYPE that declares entities: refused, so no entity is ever expanded (billion laughs) or fetched (external).
+void refuse_entities(const tinyxml2::XMLDocument& doc, const std::string& source) {
+  for (const tinyxml2::XMLNode* n = doc.FirstChild(); n; n = n->NextSibling()) {
+    const tinyxml2::XMLUnknown* u = n->ToUnknown();
+    if (!u || !u->Value()) continue;
+    const std::string v = u->Value();
+    if (v.find("ENTITY") != std::string::npos || v.find("SYSTEM") != std::string::npos)
+      throw LoadError(source, u->GetLineNum(), "!DOCTYPE",
+                      "DTD entity declarations are refused (car expands no entities and reads no external ones)");
+  }
+}
+
+// The URDF pass: element paths and line numbers as the loader writes them.
+class UrdfCheck {
+ public:
+  explicit UrdfCheck(std::string source) : source_(std::move(source)) {}
+
+  [[noreturn]] void fail(const tinyxml2::XMLElement* e, const std::string& where, const std::string& why) const {
+    throw LoadError(source_, e->GetLineNum(), where, why);
+  }
+
+  void warn(const tinyxml2::XMLElement* e, const std::string& code, const std::string& where, const std::string& why) {
+    warnings.push_back({Severity::Warning, code, where, why, e->GetLineNum()});
+  }
+
+  // An attribute of n numbers, all finite; nullopt-like false when absent (urdfdom's defaults apply).
+  bool numbers(const tinyxml2::XMLElement* e, const char* attr, size_t n, const std::string& where,
+               std::vector<double>* out, bool required = false) {
+    const char* text = e->Attribute(attr);
+    if (!text) {
+      if (required) fail(e, where, std::string("has no '") + attr + "'");
+      return false;
+    }
+    const auto toks = split_ws(text);
+    out->clear();
+    // a single value is named by its element when the attribute is "value" (<mass value>): "mass 'nan' ..."
+    const std::string label = std::string(attr) == "value" ? e->Name() : attr;
+    for (const auto& t : toks) {
+      double v = 0;
+      if (!finite_number(t, &v))
+        fail(e, where, label + " '" + trim(text) + "'" + (toks.size() > 1 ? ": '" + t + "'" : "") +
+                           " is not a finite number");
+      out->push_back(v);
+    }
+    if (out->size() != n)
+      fail(e, where, std::string(attr) + " '" + trim(text) + "' is not " + std::to_string(n) +
+                         (n == 1 ? " number" : " numbers"));
+    return true;
+  }
+
+  bool number(const tinyxml2::XMLElement* e, const char* attr, const std::string& where, double* out,
+              bool required = false) {
+    std::vector<double> v;
+    if (!numbers(e, attr, 1, where, &v, required)) return false;
+    *out = v[0];
+    return true;
+  }
+
+  // <origin xyz rpy>: finite, positions within the length limit.
+  void origin(const tinyxml2::XMLElement* parent, const std::string& where) {
+    const tinyxml2::XMLElement* o = parent->FirstChildElement("origin");
+    if (!o) return;
+    const std::string here = where + "/origin";
+    std::vector<double> v;
+    if (numbers(o, "xyz", 3, here, &v))
+      for (double x : v)
+        if (std::abs(x) > limits::kLengthMax)
+          fail(o, here, "xyz '" + trim(o->Attribute("xyz")) + "' is beyond the limit " + num(limits::kLengthMax) +
+                            " m (positions that far lose precision in the ray scene's single precision)");
+    numbers(o, "rpy", 3, here, &v);
+  }
+
+  void length(const tinyxml2::XMLElement* e, const char* attr, const std::string& where) {
+    double v = 0;
+    if (!number(e, attr, where, &v, true)) return;
+    check_length(e, attr, v, where);
+  }
+
+  void check_length(const tinyxml2::XMLElement* e, const std::string& what, double v, const std::string& where) {
+    if (!(v > 0.0)) fail(e, where, what + " " + num(v) + " m is not > 0");
+    if (v > limits::kLengthMax)
+      fail(e, where, what + " " + num(v) + " m is above the limit " + num(limits::kLengthMax) +
+                         " m (the ray scene works in single precision)");
+  }
+
+  void geometry(const tinyxml2::XMLElement* shape_parent, const std::string& where) {
+    const tinyxml2::XMLElement* g = shape_parent->FirstChildElement("geometry");
+    if (!g) return;
+    for (const tinyxml2::XMLElement* s = g->FirstChildElement(); s; s = s->NextSiblingElement()) {
+      const std::string kind = s->Name();
+      const std::string here = where + "/geometry/" + kind;
+      if (kind == "box") {
+        std::vector<double> v;
+        numbers(s, "size", 3, here, &v, true);
+        for (double x : v) check_length(s, "size", x, here);
+      } else if (kind == "cylinder") {
+        length(s, "radius", here);
+        length(s, "length", here);
+      } else if (kind == "sphere") {
+        length(s, "radius", here);
+      } else if (kind == "mesh") {
+        std::vector<double> v;
+        if (numbers(s, "scale", 3, here, &v))
+          for (double x : v)
+            if (x == 0.0 || std::abs(x) > limits::kLengthMax)
+              fail(s, here, "scale '" + trim(s->Attribute("scale")) + "' has a component 0 or beyond " +
+                                num(limits::kLengthMax));
+      }
+    }
+  }
+
+  void link(const tinyxml2::XMLElement* l) {
+    const char* name = l->Attribute("name");
+    const std::string where = std::string("link[") + (name ? name : "") + "]";
+    if (const tinyxml2::XMLElement* in = l->FirstChildElement("inertial")) {
+      const std::string here = where + "/inertial";
+      origin(in, here);
+      if (const tinyxml2::XMLElement* m = in->FirstChildElement("mass")) {
+        double mass = 0;
+        // mass <= 0 is the loader's error (inertial_problem); here: finite, and a warning outside the range
+        if (number(m, "value", here + "/mass", &mass, true) && mass > 0.0 &&
+            (mass < limits::kMassMin || mass > limits::kMassMax))
+          warn(m, "mass-range", here + "/mass",
+               "mass " + num(mass) + " kg is outside " + num(limits::kMassMin) + ".." + num(limits::kMassMax) +
+                   " kg (a unit mistake? the solver loses accuracy at such masses)");
+      }
+      if (const tinyxml2::XMLElement* i = in->FirstChildElement("inertia")) {
+        for (const char* a : {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"}) {
+          double v = 0;
+          if (!number(i, a, here + "/inertia", &v)) continue;
+          const bool diagonal = a[1] == a[2];
+          if (diagonal && v > 0.0 && (v < limits::kInertiaMin || v > limits::kInertiaMax))
+            warn(i, "inertia-range", here + "/inertia",
+                 std::string(a) + " " + num(v) + " kg m^2 is outside " + num(limits::kInertiaMin) + ".." +
+                     num(limits::kInertiaMax) + " kg m^2");
+        }
+      }
+    }
+    int k[2] = {0, 0};  // index of each collision, visual among its kind (when it has no name)
+    for (const tinyxml2::XMLElement* c = l->FirstChildElement(); c; c = c->NextSiblingElement()) {
+      const std::string tag = c->Name();
+      if (tag != "collision" && tag != "visual") continue;
+      const char* n = c->Attribute("name");
+      const int i = k[tag == "visual"]++;
+      const std::string here = where + "/" + tag + "[" + (n ? std::string(n) : std::to_string(i)) + "]";
+      origin(c, here);
+      geometry(c, here);
+    }
+  }
+
+  void joint(const tinyxml2::XMLElement* j) {
+    const char* name = j->Attribute("name");
+    const std::string where = std::string("joint[") + (name ? name : "") + "]";
+    origin(j, where);
+    std::vector<double> v;
+    double x = 0;
+    if (const tinyxml2::XMLElement* a = j->FirstChildElement("axis")) numbers(a, "xyz", 3, where + "/axis", &v);
+    if (const tinyxml2::XMLElement* l = j->FirstChildElement("limit")) {
+      const std::string here = where + "/limit";
+      number(l, "lower", here, &x);
+      number(l, "upper", here, &x);
+      for (const char* a : {"effort", "velocity"})
+        if (number(l, a, here, &x) && x < 0.0)
+          warn(l, "limit-negative", here, std::string(a) + " " + num(x) + " is negative; car does not use it");
+    }
+    if (const tinyxml2::XMLElement* d = j->FirstChildElement("dynamics")) {
+      for (const char* a : {"damping", "friction"})
+        if (number(d, a, where + "/dynamics", &x) && x < 0.0)
+          fail(d, where + "/dynamics", std::string(a) + " " + num(x) + " is negative (it would feed energy in)");
+    }
+    if (const tinyxml2::XMLElement* c = j->FirstChildElement("calibration")) {
+      number(c, "rising", where + "/calibration", &x);
+      number(c, "falling", where + "/calibration", &x);
+    }
+    if (const tinyxml2::XMLElement* m = j->FirstChildElement("mimic")) {
+      number(m, "multiplier", where + "/mimic", &x);
+      number(m, "offset", where + "/mimic", &x);
+    }
+    if (const tinyxml2::XMLElement* s = j->FirstChildElement("safety_controller"))
+      for (const char* a : {"soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity"})
+        number(s, a, where + "/safety_controller", &x);
+  }
+
+  std::vector<Diagnostic> warnings;
+
+ private:
+  std::string source_;
+};
+
+// ---- SDF ------------------------------------------------------------------------------------------------------
+
+// Leaf elements whose text is numbers in every SDF version car reads.
+const std::set<std::string>& sdf_numeric_tags() {
+  static const std::set<std::string> tags = {
+      "pose", "mass", "ixx", "ixy", "ixz", "iyy", "iyz", "izz", "size", "radius", "length", "scale", "normal",
+      "gravity", "magnetic_field", "max_step_size", "real_time_factor", "real_time_update_rate", "mu", "mu2",
+      "direction", "linear", "angular", "ambient", "background", "diffuse", "specular", "emissive"};
+  return tags;
+}
+
+std::string sdf_path(const tinyxml2::XMLElement* e) {
+  std::string p;
+  for (; e; e = e->Parent() ? e->Parent()->ToElement() : nullptr) {
+    const char* n = e->Attribute("name");
+    p = std::string(e->Name()) + (n ? std::string("[") + n + "]" : "") + (p.empty() ? "" : "/" + p);
+  }
+  return p;
+}
+
+// Every numeric leaf finite. Iterative (a deep document cannot exhaust the stack).
+void check_sdf_numbers(const tinyxml2::XMLElement* root, const std::string& source) {
+  std::vector<const tinyxml2::XMLElement*> todo = {root};
+  while (!todo.empty()) {
+    const tinyxml2::XMLElement* e = todo.back();
+    todo.pop_back();
+    for (const tinyxml2::XMLElement* c = e->LastChildElement(); c; c = c->PreviousSiblingElement()) todo.push_back(c);
+    if (e->FirstChildElement() || !sdf_numeric_tags().count(e->Name())) continue;
+    const std::string text = text_of(e);
+    const auto toks = split_ws(text);
+    for (const auto& t : toks) {
+      double v = 0;
+      if (!finite_number(t, &v))
+        throw LoadError(source, e->GetLineNum(), sdf_path(e),
+                        std::string(e->Name()) + " '" + text + "'" + (toks.size() > 1 ? ": '" + t + "'" : "") +
+                            " is not a finite number");
+    }
+  }
+}
+
+void parse_sdf(const std::string& xml, const std::string& source, tinyxml2::XMLDocument* doc) {
+  if (doc->Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
+    throw LoadError(source, doc->ErrorLineNum(), "", std::string("malformed XML: ") + doc->ErrorStr());
+  refuse_entities(*doc, source);
+  if (!doc->RootElement() || std::string(doc->RootElement()->Name()) != "sdf")
+    throw LoadError(source, doc->RootElement() ? doc->RootElement()->GetLineNum() : 0,
+                    doc->RootElement() ? doc->RootElement()->Name() : "", "root element is not <sdf>");
+}
+
+// The SDF file a model folder's model.config names: the highest <sdf version> up to 1.9.
+std::string model_sdf_file(const std::string& folder) {
+  tinyxml2::XMLDocument cfg;
+  if (cfg.LoadFile((folder + "/model.config").c_str()) != tinyxml2::XML_SUCCESS || !cfg.RootElement())
+    return "";
+  std::string best;
+  double best_v = -1;
+  for (auto* s = cfg.RootElement()->FirstChildElement("sdf"); s; s = s->NextSiblingElement("sdf")) {
+    double v = 0;
+    if (!finite_number(s->Attribute("version") ? s->Attribute("version") : "0", &v)) v = 0;
+    if (v <= 1.9 && v > best_v && !text_of(s).empty()) best = text_of(s), best_v = v;
+  }
+  return best.empty() ? "" : folder + "/" + best;
+}
+
+void read_file(const std::string& path, std::string* out) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  *out = ss.str();
+}
+
+// Every <include> below e: found, checked, no cycle (chain: the files including this one).
+void check_includes(const tinyxml2::XMLElement* root, const std::string& source, const std::string& base_dir,
+                    std::vector<std::string>* chain, std::set<std::string>* done) {
+  std::vector<const tinyxml2::XMLElement*> todo = {root};
+  while (!todo.empty()) {
+    const tinyxml2::XMLElement* e = todo.back();
+    todo.pop_back();
+    for (const tinyxml2::XMLElement* c = e->LastChildElement(); c; c = c->PreviousSiblingElement()) todo.push_back(c);
+    if (std::string(e->Name()) != "include") continue;
+    const std::string uri = text_of(e->FirstChildElement("uri"));
+    if (uri.empty()) throw LoadError(source, e->GetLineNum(), sdf_path(e), "<include> has no <uri>");
+    const std::string found = resolve_uri(uri, base_dir);
+    if (found.empty()) {
+      std::string path;
+      for (const auto& d : model_path()) path += (path.empty() ? "" : ":") + d;
+      throw LoadError(source, e->GetLineNum(), sdf_path(e) + "/uri",
+                      "cannot find '" + uri + "' (model path: " + path + ")");
+    }
+    std::error_code ec;
+    std::string file = std::filesystem::is_directory(found, ec) ? model_sdf_file(found) : found;
+    if (file.empty()) throw LoadError(source, e->GetLineNum(), sdf_path(e) + "/uri", "'" + found + "' has no model.config naming an SDF file");
+    const std::string canon = std::filesystem::weakly_canonical(file, ec).string();
+    for (const auto& f : *chain)
+      if (f == canon) {
+        std::string loop;
+        for (const auto& g : *chain) loop += g + " -> ";
+        throw LoadError(source, e->GetLineNum(), sdf_path(e) + "/uri", "include loop: " + loop + canon);
+      }
+    if (static_cast<int>(chain->size()) > limits::kIncludeDepthMax)
+      throw LoadError(source, e->GetLineNum(), sdf_path(e) + "/uri",
+                      "includes nest deeper than " + std::to_string(limits::kIncludeDepthMax) + " levels");
+    if (done->count(canon)) continue;
+    std::string xml;
+    read_file(file, &xml);
+    tinyxml2::XMLDocument doc;
+    parse_sdf(xml, file, &doc);
+    check_sdf_numbers(doc.RootElement(), file);
+    chain->push_back(canon);
+    // sdformat resolves an included model's own includes against the world's folder, so they do here too
+    check_includes(doc.RootElement(), file, base_dir, chain, done);
+    chain->pop_back();
+    done->insert(canon);
+  }
+}
+
+// ---- converted worlds -----------------------------------------------------------------------------------------
+
+[[noreturn]] void world_fail(const WorldDescription& d, const std::string& where, const std::string& why) {
+  throw LoadError(d.source, 0, where, why);
+}
+
+void check_pose(const WorldDescription& d, const Eigen::Isometry3d& T, const std::string& where) {
+  if (!T.matrix().allFinite()) world_fail(d, where, "pose is not finite");
+  if (T.translation().cwiseAbs().maxCoeff() > limits::kLengthMax)
+    world_fail(d, where, "position (" + num(T.translation().x()) + " " + num(T.translation().y()) + " " +
+                             num(T.translation().z()) + ") m is beyond the limit " + num(limits::kLengthMax) + " m");
+}
+
+void check_shape(const WorldDescription& d, const Shape& s, const std::string& where) {
+  check_pose(d, s.origin, where + "/pose");
+  auto len = [&](const char* what, double v) {
+    if (!(v > 0.0) || !std::isfinite(v)) world_fail(d, where, std::string(what) + " " + num(v) + " m is not > 0");
+    if (v > limits::kLengthMax)
+      world_fail(d, where, std::string(what) + " " + num(v) + " m is above the limit " + num(limits::kLengthMax) + " m");
+  };
+  switch (s.type) {
+    case ShapeType::Box:
+      for (int i = 0; i < 3; ++i) len("size", s.size(i));
+      break;
+    case ShapeType::Cylinder:
+      len("radius", s.radius);
+      len("length", s.length);
+      break;
+    case ShapeType::Sphere:
+      len("radius", s.radius);
+      break;
+    case ShapeType::Plane:
+      if (!s.normal.allFinite() || s.normal.norm() < 1e-9) world_fail(d, where, "plane normal is zero or not finite");
+      break;
+    case ShapeType::Mesh:
+      if (!s.mesh_scale.allFinite() || s.mesh_scale.cwiseAbs().minCoeff() == 0.0)
+        world_fail(d, where, "mesh scale has a component 0 or not finite");
+      break;
+  }
+}
+
+}  // namespace
+
+std::vector<Diagnostic> validate_urdf(const tinyxml2::XMLDocument& doc, const std::string& source) {
+  refuse_entities(doc, source);
+  UrdfCheck check(source);
+  const tinyxml2::XMLElement* robot = doc.RootElement();
+  if (!robot) return {};
+  for (const tinyxml2::XMLElement* e = robot->FirstChildElement(); e; e = e->NextSiblingElement()) {
+    const std::string tag = e->Name();
+    if (tag == "link") check.link(e);
+    if (tag == "joint") check.joint(e);
+  }
+  return check.warnings;
+}
+
+void prevalidate_sdf(const std::string& xml, const std::string& source, const std::string& base_dir) {
+  tinyxml2::XMLDocument doc;
+  parse_sdf(xml, source, &doc);
+  check_sdf_numbers(doc.RootElement(), source);
+  std::error_code ec;
+  std::vector<std::string> chain;
+  if (source.find('<') == std::string::npos && std::filesystem::exists(source, ec))
+    chain.push_back(std::filesystem::weakly_canonical(source, ec).string());
+  std::set<std::string> done;
+  check_includes(doc.RootElement(), source, base_dir, &chain, &done);
+}
+
+void validate_world(WorldDescription* d) {
+  if (!(d->step_size > 0.0) || !std::isfinite(d->step_size))
+    world_fail(*d, "world/physics/max_step_size", "step size " + num(d->step_size) + " s is not finite and > 0");
+  if (!d->gravity.allFinite()) world_fail(*d, "world/gravity", "gravity is not finite");
+  if (!(d->real_time_factor >= 0.0) || !std::isfinite(d->real_time_factor))
+    world_fail(*d, "world/physics/real_time_factor",
+               "real-time factor " + num(d->real_time_factor) + " is not finite and >= 0");
+  for (const auto& m : d->models) {
+    const std::string mw = "model[" + m.name + "]";
+    check_pose(*d, m.pose, mw + "/pose");
+    for (const auto& l : m.links) {
+      const std::string lw = mw + "/link[" + l.name + "]";
+      check_pose(*d, l.pose, lw + "/pose");
+      for (const auto& c : l.collisions) check_shape(*d, c.shape, lw + "/collision[" + c.name + "]");
+      for (const auto& v : l.visuals) check_shape(*d, v.shape, lw + "/visual[" + v.name + "]");
+      if (!l.inertial) continue;
+      const Inertial& in = *l.inertial;
+      check_pose(*d, in.origin, lw + "/inertial/pose");
+      if (!std::isfinite(in.mass)) world_fail(*d, lw + "/inertial/mass", "mass " + num(in.mass) + " kg is not finite");
+      if (!in.inertia.allFinite()) world_fail(*d, lw + "/inertial/inertia", "inertia is not finite");
+      if (m.is_static) continue;
+      if (in.mass > 0.0 && (in.mass < limits::kMassMin || in.mass > limits::kMassMax))
+        d->diagnostics.push_back({Severity::Warning, "mass-range", lw + "/inertial/mass",
+                                  "mass " + num(in.mass) + " kg is outside " + num(limits::kMassMin) + ".." +
+                                      num(limits::kMassMax) + " kg",
+                                  0});
+    }
+  }
+}
+
+}  // namespace detail
+}  // namespace car_sim

@@ -1,0 +1,144 @@
+// Limits and validation before allocation (src/model/validate.cpp, the plug-in schemas' limits) and the physics
+// guard: each error names file, line, element and the value as written. Expectations worked out from the
+// fixtures in test/data/bad/ (line numbers counted in the files).
+#include <gtest/gtest.h>
+
+#include "car_sim/description.hpp"
+#include "car_sim/model.hpp"
+#include "car_sim/world.hpp"
+#include "test_util.hpp"
+
+using namespace car_sim;
+
+namespace {
+
+std::string urdf_error(const std::string& file) {
+  try {
+    load_urdf_file(data_path("bad/" + file));
+  } catch (const LoadError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string world_error(const std::string& file) {
+  try {
+    load_world_file(data_path("bad/" + file));
+  } catch (const LoadError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string spawn_error(const std::string& file) {
+  World w(empty_world());
+  try {
+    w.spawn(load_urdf_file(data_path("bad/" + file)), "robot", at(0, 0, 0));
+  } catch (const LoadError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(Validate, NanMassIsReportedWithItsValueAndLine) {
+  // <mass> is on line 7 of the template; urdfdom alone would report "mass 0"
+  EXPECT_EQ(urdf_error("mass_nan.urdf"),
+            data_path("bad/mass_nan.urdf") + ":7: link[base_link]/inertial/mass: mass 'nan' is not a finite number");
+}
+
+TEST(Validate, NegativeCylinderRadiusIsRefused) {
+  EXPECT_EQ(urdf_error("cylinder_radius_negative.urdf"),
+            data_path("bad/cylinder_radius_negative.urdf") +
+                ":15: link[wheel]/collision[0]/geometry/cylinder: radius -0.1 m is not > 0");
+}
+
+TEST(Validate, ZeroCylinderRadiusIsRefused) {
+  EXPECT_NE(urdf_error("cylinder_radius_zero.urdf").find("radius 0 m is not > 0"), std::string::npos);
+}
+
+TEST(Validate, NanInAJointOriginNamesTheJointNotAColour) {
+  EXPECT_EQ(urdf_error("joint_origin_nan.urdf"),
+            data_path("bad/joint_origin_nan.urdf") +
+                ":19: joint[wheel_joint]/origin: xyz 'nan 0.1 0': 'nan' is not a finite number");
+}
+
+TEST(Validate, HugeMassIsAWarningNotAnError) {
+  const RobotModel m = load_urdf_file(data_path("bad/mass_huge.urdf"));
+  ASSERT_FALSE(m.diagnostics.empty());
+  EXPECT_EQ(m.diagnostics[0].code, "mass-range");
+  EXPECT_EQ(m.diagnostics[0].message,
+            "mass 1e+300 kg is outside 1e-06..1e+06 kg (a unit mistake? the solver loses accuracy at such masses)");
+}
+
+TEST(Validate, EntityDeclarationsAreRefused) {
+  EXPECT_NE(urdf_error("billion_laughs.urdf").find("DTD entity declarations are refused"), std::string::npos);
+  EXPECT_NE(urdf_error("external_entity.urdf").find("DTD entity declarations are refused"), std::string::npos);
+}
+
+TEST(Validate, LidarSamplesAboveTheLimitFailBeforeAllocation) {
+  // line 25: <sensor> in the template's extra block
+  EXPECT_EQ(spawn_error("lidar_samples_huge.urdf"),
+            data_path("bad/lidar_samples_huge.urdf") +
+                ":25: sensor[laser]/ray/scan/horizontal/samples: ray/scan/horizontal/samples 1000000000 is above the "
+                "limit 100000");
+}
+
+TEST(Validate, CameraAboveTheSideLimitFailsBeforeAllocation) {
+  EXPECT_EQ(spawn_error("camera_huge.urdf"),
+            data_path("bad/camera_huge.urdf") +
+                ":25: sensor[cam]/camera/image/width: camera/image/width 100000 is above the limit 8192 px");
+}
+
+TEST(Validate, CameraPixelsAboveTheLimitFail) {
+  // 4096 x 4096 = 16777216 px > 2048 x 2048 = 4194304 px
+  EXPECT_NE(spawn_error("camera_pixels.urdf").find("width x height = 16777216 px is above the limit 4194304 px"),
+            std::string::npos);
+}
+
+TEST(Validate, WorldStepSizeZeroIsRefusedWithItsValue) {
+  EXPECT_EQ(world_error("step_zero.world"),
+            data_path("bad/step_zero.world") + ": world/physics/max_step_size: step size 0 s is not finite and > 0");
+}
+
+TEST(Validate, WorldStepSizeNanNamesTheLine) {
+  // <physics> is on line 6 of the world template
+  EXPECT_EQ(world_error("step_nan.world"),
+            data_path("bad/step_nan.world") +
+                ":6: sdf/world[step_nan]/physics/max_step_size: max_step_size 'nan' is not a finite number");
+}
+
+TEST(Validate, WorldGravityNanIsRefused) {
+  EXPECT_NE(world_error("gravity_nan.world").find(":5: sdf/world[gravity_nan]/gravity: gravity '0 0 nan': 'nan' is not"),
+            std::string::npos);
+}
+
+TEST(Validate, WorldNegativeBoxIsRefused) {
+  EXPECT_EQ(world_error("box_negative.world"),
+            data_path("bad/box_negative.world") + ": model[crate]/link[body]/collision[c]: size -1 m is not > 0");
+}
+
+TEST(Validate, IncludeLoopIsRefusedBeforeSdformatRecursesForever) {
+  setenv("GAZEBO_MODEL_PATH", data_path("bad/models").c_str(), 1);
+  const std::string e = world_error("include_loop.world");
+  unsetenv("GAZEBO_MODEL_PATH");
+  EXPECT_NE(e.find("include loop: "), std::string::npos) << e;
+  EXPECT_NE(e.find("loop_a/model.sdf -> "), std::string::npos) << e;
+}
+
+TEST(Guard, ABodyThatBlowsUpStopsTheWorldNamingIt) {
+  // 1e300 kg on the ground plane: the contact solver's impulses overflow within the first steps
+  World w(empty_world());
+  w.spawn(load_urdf_file(data_path("bad/mass_huge.urdf")), "robot", at(0, 0, 0));
+  std::string what;
+  try {
+    w.step(1000);
+  } catch (const SimulationError& e) {
+    what = e.what();
+  }
+  EXPECT_NE(what.find(": robot/"), std::string::npos) << what;
+  EXPECT_NE(what.find("is not finite; the world stops here"), std::string::npos) << what;
+  // stopped: the next step throws again
+  EXPECT_THROW(w.step(1), SimulationError);
+}
