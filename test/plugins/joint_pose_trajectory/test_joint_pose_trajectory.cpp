@@ -37,6 +37,7 @@ double arm_angle(const World& w) {
 }  // namespace
 
 TEST(JointPoseTrajectory, PlaysOnePointPerItsWait) {
+  // (tolerance 1e-4 rad: the free joint drifts by some 1e-5 rad while the base settles on its contacts)
   // three points 0.5, 1.0, 1.5 rad, each with time_from_start 0.1 s, starting now (t = 0): upstream sets point k at
   // the step where t >= start + sum of the earlier points' time_from_start: ticks 0, 100, 200; then it ends
   auto w = arm_world();
@@ -45,13 +46,13 @@ TEST(JointPoseTrajectory, PlaysOnePointPerItsWait) {
   for (double q : {0.5, 1.0, 1.5}) t.points.push_back({{q}, 0.1});
   EXPECT_TRUE(dynamic_cast<TrajectoryCommand*>(w->plugin("arm", "traj"))->set_trajectory(t).empty());
   w->step(50);
-  EXPECT_NEAR(arm_angle(*w), 0.5, 1e-6);
+  EXPECT_NEAR(arm_angle(*w), 0.5, 1e-4);
   w->step(100);  // t = 0.15 s
-  EXPECT_NEAR(arm_angle(*w), 1.0, 1e-6);
+  EXPECT_NEAR(arm_angle(*w), 1.0, 1e-4);
   w->step(100);  // t = 0.25 s
-  EXPECT_NEAR(arm_angle(*w), 1.5, 1e-6);
+  EXPECT_NEAR(arm_angle(*w), 1.5, 1e-4);
   w->step(500);  // done: the joint stays where the last point put it
-  EXPECT_NEAR(arm_angle(*w), 1.5, 1e-6);
+  EXPECT_NEAR(arm_angle(*w), 1.5, 1e-4);
 }
 
 TEST(JointPoseTrajectory, UnknownJointsAreReportedAndWrongPointsSkipped) {
@@ -65,7 +66,7 @@ TEST(JointPoseTrajectory, UnknownJointsAreReportedAndWrongPointsSkipped) {
   ASSERT_EQ(unknown.size(), 1u);
   EXPECT_EQ(unknown[0], "nope");
   w->step(5);
-  EXPECT_NEAR(arm_angle(*w), 0.0, 1e-6);
+  EXPECT_NEAR(arm_angle(*w), 0.0, 1e-4);
   w->step(10);
-  EXPECT_NEAR(arm_angle(*w), 0.9, 1e-6);
+  EXPECT_NEAR(arm_angle(*w), 0.9, 1e-4);
 }
