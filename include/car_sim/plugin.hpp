@@ -77,6 +77,21 @@ struct MotorTarget {
   double kp = 0.0;        // [-] fraction of the position error corrected per step (0 = none)
 };
 
+// A force and a torque on a body (issue 11: wrench plug-ins, f3d, ft_sensor).
+struct Wrench {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();   // [N]
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();  // [N m]
+};
+
+// One contact point of a link with another body during the last step (the bumper's ContactState).
+struct LinkContact {
+  std::string other;                                   // the other body, "model::link"
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // [m], world frame
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();   // unit, world frame, from the other body into this link
+  double depth = 0.0;                                  // [m] penetration, >= 0
+  double normal_force = 0.0;                           // [N] along normal, on this link
+};
+
 // A plug-in's robot. Read access any time; actuation (motors, efforts) in configure and pre_physics only.
 class RobotHandle {
  public:
@@ -99,6 +114,29 @@ class RobotHandle {
   virtual ModelState link_state(const std::string& link) const = 0;
   // The root link's frame, with the velocity of its origin, world frame.
   virtual ModelState root_state() const = 0;
+
+  // ---- motion and contact (issue 11) ----
+  // Adds a force [N] and a torque [N m] on a link for the coming step only, the force acting at `point` [m].
+  // in_link_frame: force, torque and point in the link's frame (point relative to its origin); else world frame
+  // (point a world position). In pre_physics only. Throws for an unknown link.
+  virtual void apply_wrench(const std::string& link, const Wrench& w, const Eigen::Vector3d& point,
+                            bool in_link_frame) = 0;
+  // The sum of what apply_wrench added to a link for the last step: force [N] and torque [N m] about the link's
+  // centre of mass, world frame (zero when nothing was applied). Throws for an unknown link.
+  virtual Wrench applied_wrench(const std::string& link) const = 0;
+  // Sets the root's velocity, world frame: linear [m/s] of the root frame's origin, angular [rad/s]. The pose stays.
+  virtual void set_root_velocity(const Eigen::Vector3d& linear, const Eigen::Vector3d& angular) = 0;
+  // Moves the root frame to a world pose; velocities stay.
+  virtual void set_root_pose(const Eigen::Isometry3d& pose) = 0;
+  // Sets a joint's position [rad] or [m] and its velocity to 0.
+  virtual void set_joint_position(int joint, double position) = 0;
+  // Measure the joint's reaction wrench from now on (in configure). Throws for a joint that is not moving.
+  virtual void enable_joint_wrench(int joint) = 0;
+  // The wrench the joint exerted on its child link during the last step: force [N] and torque [N m] about the child
+  // link's origin, in the child link's frame. Needs enable_joint_wrench.
+  virtual Wrench joint_wrench(int joint) const = 0;
+  // Contacts of a link's body (the rigid body it was merged into) during the last step, with a positive force.
+  virtual std::vector<LinkContact> link_contacts(const std::string& link) const = 0;
 };
 
 // What a plug-in may read of the world at a step.

@@ -8,6 +8,7 @@
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 #include <BulletDynamics/Featherstone/btMultiBodyJointLimitConstraint.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointFeedback.h>
 #include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 
@@ -577,6 +578,21 @@ class BulletRobot : public Robot {
       }
     }
   }
+
+ public:
+  // ---- motion and contact (issue 11; defined at the end of this file) ----
+  void apply_wrench(const std::string& link, const Eigen::Vector3d& force, const Eigen::Vector3d& torque,
+                    const Eigen::Vector3d& point) override;
+  Eigen::Vector3d body_com(const std::string& link) const override;
+  void set_root_velocity(const Eigen::Vector3d& linear, const Eigen::Vector3d& angular) override;
+  void set_joint_position(int joint, double position) override;
+  void enable_joint_wrench(int joint) override;
+  Wrench joint_wrench(int joint) const override;
+  std::vector<LinkContact> link_contacts(const std::string& link) const override;
+
+ private:
+  int body_index(const std::string& link) const;
+  std::vector<std::unique_ptr<btMultiBodyJointFeedback>> feedback_;  // joint reaction sensors
 };
 
 Physics::Impl::Impl(const WorldDescription& d, const Options& o) : options(o) {
@@ -854,6 +870,100 @@ const RayScene& Physics::rays() {
 }
 
 void Physics::invalidate_rays() { impl_->rays_stamp = ~0ull; }
+
+// ---- motion and contact (issue 11) ---------------------------------------------------------------------------
+
+int BulletRobot::body_index(const std::string& link) const {
+  const auto it = tree_.body_of_link.find(link);
+  if (it == tree_.body_of_link.end()) throw std::invalid_argument("robot '" + name_ + "' has no link '" + link + "'");
+  return it->second;
+}
+
+Eigen::Vector3d BulletRobot::body_com(const std::string& link) const {
+  return body_com_pose(body_index(link)).translation();
+}
+
+// Bullet applies a body's force at its centre of mass: a force at another point adds (point - com) x force.
+void BulletRobot::apply_wrench(const std::string& link, const Eigen::Vector3d& force, const Eigen::Vector3d& torque,
+                               const Eigen::Vector3d& point) {
+  const int b = body_index(link);
+  const Eigen::Vector3d com = body_com_pose(b).translation();
+  const Eigen::Vector3d tau = torque + (point - com).cross(force);
+  if (b == 0) {
+    mb_->addBaseForce(bt(force));
+    mb_->addBaseTorque(bt(tau));
+  } else {
+    mb_->addLinkForce(b - 1, bt(force));
+    mb_->addLinkTorque(b - 1, bt(tau));
+  }
+}
+
+void BulletRobot::set_root_velocity(const Eigen::Vector3d& linear, const Eigen::Vector3d& angular) {
+  const Eigen::Isometry3d origin = eig(mb_->getBaseWorldTransform()) * tree_.bodies[0].top_to_com.inverse();
+  const Eigen::Vector3d com = eig(mb_->getBasePos());
+  mb_->setBaseOmega(bt(angular));
+  mb_->setBaseVel(bt(Eigen::Vector3d(linear + angular.cross(com - origin.translation()))));
+}
+
+void BulletRobot::set_joint_position(int joint, double position) {
+  mb_->setJointPos(joint, position);
+  mb_->setJointVel(joint, 0.0);
+  update_colliders();
+}
+
+void BulletRobot::enable_joint_wrench(int joint) {
+  if (joint < 0 || joint >= mb_->getNumLinks()) throw std::invalid_argument("no moving joint " + std::to_string(joint));
+  if (mb_->getLink(joint).m_jointFeedback) return;
+  feedback_.push_back(std::make_unique<btMultiBodyJointFeedback>());
+  mb_->getLink(joint).m_jointFeedback = feedback_.back().get();
+}
+
+// Bullet's reaction: the spatial force on the child body in its centre-of-mass frame (torque about the com);
+// car reports it in the child link's frame, torque about the link's origin.
+Wrench BulletRobot::joint_wrench(int joint) const {
+  Wrench w;
+  const btMultibodyLink& l = mb_->getLink(joint);
+  if (!l.m_jointFeedback) return w;
+  const int body = joint + 1;
+  const Eigen::Isometry3d com = body_com_pose(body);
+  const Eigen::Vector3d f_world = com.linear() * eig(l.m_jointFeedback->m_reactionForces.getLinear());
+  const Eigen::Vector3d t_world = com.linear() * eig(l.m_jointFeedback->m_reactionForces.getAngular());
+  const std::string& child = tree_.bodies[body].top;
+  const Eigen::Isometry3d link = com * tree_.bodies[body].top_to_com.inverse() * tree_.link_in_top.at(child);
+  w.force = link.linear().transpose() * f_world;
+  w.torque = link.linear().transpose() * (t_world + (com.translation() - link.translation()).cross(f_world));
+  return w;
+}
+
+std::vector<LinkContact> BulletRobot::link_contacts(const std::string& link) const {
+  std::vector<LinkContact> out;
+  const btCollisionObject* mine = collider(body_index(link));
+  if (!mine) return out;
+  btDispatcher* d = P_.world.getDispatcher();
+  for (int i = 0; i < d->getNumManifolds(); ++i) {
+    const btPersistentManifold* m = d->getManifoldByIndexInternal(i);
+    const bool is_a = m->getBody0() == mine;
+    if (!is_a && m->getBody1() != mine) continue;
+    const btCollisionObject* other = is_a ? m->getBody1() : m->getBody0();
+    const int idx = other->getUserIndex();
+    std::string name = idx >= 0 && idx < static_cast<int>(P_.object_names.size()) ? P_.object_names[idx] : "?";
+    const auto slash = name.find('/');
+    if (slash != std::string::npos) name.replace(slash, 1, "::");
+    for (int k = 0; k < m->getNumContacts(); ++k) {
+      const btManifoldPoint& p = m->getContactPoint(k);
+      if (p.getAppliedImpulse() <= 0.0) continue;
+      LinkContact c;
+      c.other = name;
+      // normalWorldOnB points from B towards A: into this link when it is A
+      c.normal = is_a ? eig(p.m_normalWorldOnB) : Eigen::Vector3d(-eig(p.m_normalWorldOnB));
+      c.position = eig(is_a ? p.getPositionWorldOnA() : p.getPositionWorldOnB());
+      c.depth = std::max(0.0, -static_cast<double>(p.getDistance()));
+      c.normal_force = p.getAppliedImpulse() / P_.options.dt;
+      out.push_back(std::move(c));
+    }
+  }
+  return out;
+}
 
 }  // namespace physics
 }  // namespace car_sim

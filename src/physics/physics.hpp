@@ -76,6 +76,18 @@ class Robot {
   virtual ModelState root_state() const = 0;
   virtual void set_root_state(const ModelState& s) = 0;
   virtual bool has_link(const std::string& link) const = 0;
+
+  // ---- motion and contact (issue 11; implemented at the end of physics.cpp) ----
+  // A force [N] at a world point [m] and a torque [N m], world frame, on a link's body for the coming step.
+  virtual void apply_wrench(const std::string& link, const Eigen::Vector3d& force, const Eigen::Vector3d& torque,
+                            const Eigen::Vector3d& point) = 0;
+  // World position [m] of a link's body's centre of mass.
+  virtual Eigen::Vector3d body_com(const std::string& link) const = 0;
+  virtual void set_root_velocity(const Eigen::Vector3d& linear, const Eigen::Vector3d& angular) = 0;
+  virtual void set_joint_position(int joint, double position) = 0;
+  virtual void enable_joint_wrench(int joint) = 0;
+  virtual Wrench joint_wrench(int joint) const = 0;
+  virtual std::vector<LinkContact> link_contacts(const std::string& link) const = 0;
 };
 
 }  // namespace physics

@@ -9,6 +9,16 @@
 #include "laser/laser.hpp"
 #include "openni_kinect/openni_kinect.hpp"
 #include "p3d/p3d.hpp"
+#include "planar_move/planar_move.hpp"
+#include "skid_steer_drive/skid_steer_drive.hpp"
+#include "joint_state_publisher/joint_state_publisher.hpp"
+#include "force/force.hpp"
+#include "f3d/f3d.hpp"
+#include "bumper/bumper.hpp"
+#include "ft_sensor/ft_sensor.hpp"
+#include "hand_of_god/hand_of_god.hpp"
+#include "joint_pose_trajectory/joint_pose_trajectory.hpp"
+#include "tricycle_drive/tricycle_drive.hpp"
 
 namespace car_sim {
 
@@ -20,6 +30,16 @@ const std::vector<const PluginKind*>& plugin_kinds() {
       &openni_kinect_kind(),
       &imu_kind(),
       &p3d_kind(),
+      &planar_move_kind(),
+      &skid_steer_drive_kind(),
+      &joint_state_publisher_kind(),
+      &force_kind(),
+      &f3d_kind(),
+      &bumper_kind(),
+      &ft_sensor_kind(),
+      &hand_of_god_kind(),
+      &joint_pose_trajectory_kind(),
+      &tricycle_drive_kind(),
   };
   return kinds;
 }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include "car_sim/mesh.hpp"
@@ -55,6 +56,46 @@ struct World::Impl : WorldAccess {
     Eigen::Isometry3d link_pose(const std::string& l) const override { return body->link_pose(l); }
     ModelState link_state(const std::string& l) const override { return body->link_state(l); }
     ModelState root_state() const override { return body->root_state(); }
+
+    // ---- motion and contact (issue 11) ----
+    std::map<std::string, Wrench> applied;  // what apply_wrench added per link this step; cleared before each step
+
+    void apply_wrench(const std::string& l, const Wrench& w, const Eigen::Vector3d& point, bool in_link_frame) override {
+      Wrench world = w;
+      Eigen::Vector3d at = point;
+      if (in_link_frame) {
+        const Eigen::Isometry3d T = body->link_pose(l);
+        world.force = T.linear() * w.force;
+        world.torque = T.linear() * w.torque;
+        at = T * point;
+      }
+      body->apply_wrench(l, world.force, world.torque, at);
+      // [N], [N m] about the body's centre of mass, world frame
+      Wrench& sum = applied[l];
+      sum.force += world.force;
+      sum.torque += world.torque + (at - body->body_com(l)).cross(world.force);
+    }
+    Wrench applied_wrench(const std::string& l) const override {
+      if (!body->has_link(l)) throw std::invalid_argument("robot '" + info.name + "' has no link '" + l + "'");
+      const auto it = applied.find(l);
+      return it == applied.end() ? Wrench() : it->second;
+    }
+    void set_root_velocity(const Eigen::Vector3d& linear, const Eigen::Vector3d& angular) override {
+      body->set_root_velocity(linear, angular);
+    }
+    void set_root_pose(const Eigen::Isometry3d& pose) override {
+      ModelState s = body->root_state();
+      s.pose = pose;
+      body->set_root_state(s);
+    }
+    void set_joint_position(int j, double position) override { body->set_joint_position(j, position); }
+    std::vector<int> wrench_claims;  // joints with a reaction sensor, re-made after a rebuild
+    void enable_joint_wrench(int j) override {
+      body->enable_joint_wrench(j);
+      wrench_claims.push_back(j);
+    }
+    Wrench joint_wrench(int j) const override { return body->joint_wrench(j); }
+    std::vector<LinkContact> link_contacts(const std::string& l) const override { return body->link_contacts(l); }
   };
 
   Impl(const WorldDescription& d, const WorldOptions& o) : desc(d), options(o) {
@@ -124,6 +165,7 @@ struct World::Impl : WorldAccess {
     for (auto& r : robots) {
       r->body = &phys->add_robot(r->info.model, r->info.name, r->info.spawn_pose, r->driven);
       for (const auto& [joint, effort] : r->motor_claims) r->body->add_motor(joint, effort);
+      for (int j : r->wrench_claims) r->body->enable_joint_wrench(j);
       for (auto& i : r->plugins) {
         i.plugin->reset();
         i.queue.clear();
@@ -202,6 +244,7 @@ void World::step(uint64_t n) {
   ctx.world = impl_.get();
   for (uint64_t s = 0; s < n; ++s) {
     ctx.tick = tick_;
+    for (auto& r : impl_->robots) r->applied.clear();
     for (auto& r : impl_->robots)
       for (auto& i : r->plugins) i.plugin->pre_physics(ctx, *r);
     try {

@@ -128,7 +128,7 @@ TEST(Plugins, FlagsAcceptAnyCase) {
 
 TEST(Plugins, UnknownPluginIsWarned) {
   const auto c = resolve_plugins(load_urdf_string(
-      car_with("libgazebo_ros_diff_drive.so", "libgazebo_ros_planar_move.so"), "car04"));
+      car_with("libgazebo_ros_diff_drive.so", "libgazebo_ros_no_such_plugin.so"), "car04"));
   EXPECT_TRUE(has_diag(c.diagnostics, "plugin-unknown", "gazebo/plugin[differential_drive_controller]"));
 }
 

@@ -11,6 +11,16 @@ std::unique_ptr<Adapter> make_camera_adapter();
 std::unique_ptr<Adapter> make_openni_kinect_adapter();
 std::unique_ptr<Adapter> make_imu_adapter();
 std::unique_ptr<Adapter> make_p3d_adapter();
+std::unique_ptr<Adapter> make_planar_move_adapter();
+std::unique_ptr<Adapter> make_skid_steer_drive_adapter();
+std::unique_ptr<Adapter> make_joint_state_publisher_adapter();
+std::unique_ptr<Adapter> make_force_adapter();
+std::unique_ptr<Adapter> make_f3d_adapter();
+std::unique_ptr<Adapter> make_bumper_adapter();
+std::unique_ptr<Adapter> make_ft_sensor_adapter();
+std::unique_ptr<Adapter> make_hand_of_god_adapter();
+std::unique_ptr<Adapter> make_joint_pose_trajectory_adapter();
+std::unique_ptr<Adapter> make_tricycle_drive_adapter();
 
 namespace {
 
@@ -21,6 +31,16 @@ const AdapterKind kAdapters[] = {
     {"openni_kinect", make_openni_kinect_adapter},
     {"imu", make_imu_adapter},
     {"p3d", make_p3d_adapter},
+    {"planar_move", make_planar_move_adapter},
+    {"skid_steer_drive", make_skid_steer_drive_adapter},
+    {"joint_state_publisher", make_joint_state_publisher_adapter},
+    {"force", make_force_adapter},
+    {"f3d", make_f3d_adapter},
+    {"bumper", make_bumper_adapter},
+    {"ft_sensor", make_ft_sensor_adapter},
+    {"hand_of_god", make_hand_of_god_adapter},
+    {"joint_pose_trajectory", make_joint_pose_trajectory_adapter},
+    {"tricycle_drive", make_tricycle_drive_adapter},
 };
 
 }  // namespace

@@ -1,0 +1,32 @@
+// libgazebo_ros_joint_pose_trajectory.so: a joint trajectory played by setting joint positions, one point per step.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "car_sim/plugin.hpp"
+
+namespace car_sim {
+
+struct TrajectoryPoint {
+  std::vector<double> positions;  // [rad] or [m], one per joint name
+  double time_from_start = 0.0;   // [s]; upstream uses it as the wait after this point
+};
+
+struct JointTrajectory {
+  std::vector<std::string> joint_names;
+  std::vector<TrajectoryPoint> points;
+  double start = 0.0;  // [s] sim time of the first point (earlier: now)
+};
+
+// A plug-in that takes a trajectory command (the ROS adapter feeds it).
+class TrajectoryCommand {
+ public:
+  virtual ~TrajectoryCommand() = default;
+  // Replaces any trajectory in progress. Returns what was skipped (unknown joint names), for the log.
+  virtual std::vector<std::string> set_trajectory(const JointTrajectory& t) = 0;
+};
+
+const PluginKind& joint_pose_trajectory_kind();
+
+}  // namespace car_sim

@@ -1,0 +1,89 @@
+// libgazebo_ros_skid_steer_drive.so on ROS: cmd_vel (linear.x, angular.z) in; odometry out at updateRate with
+// covariance_x/_y/_yaw on pose and twist; TF odometryFrame -> robotBaseFrame only with broadcastTF.
+#include <geometry_msgs/Twist.h>
+#include <nav_msgs/Odometry.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "../adapter.hpp"
+#include "../conversions.hpp"
+#include "skid_steer_drive/skid_steer_drive.hpp"
+
+namespace car_ros {
+
+namespace {
+
+class SkidSteerAdapter : public Adapter {
+ public:
+  std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
+    robot_ = robot.name;
+    drive_ = dynamic_cast<car_sim::TwistDrive*>(node.world().plugin(robot.name, p.config.name));
+    const std::string ns = plugin_namespace(p.config);
+    odom_frame_ = frame(p.config.text("odometryFrame"));
+    base_frame_ = frame(p.config.text("robotBaseFrame"));
+    broadcast_tf_ = p.config.flag("broadcastTF");
+    cov_[0] = p.config.number("covariance_x");
+    cov_[1] = p.config.number("covariance_y");
+    cov_[2] = cov_[3] = cov_[4] = 1e12;
+    cov_[5] = p.config.number("covariance_yaw");
+    const std::string cmd = topic_in(ns, p.config.text("commandTopic"));
+    const std::string odom = topic_in(ns, p.config.text("odometryTopic"));
+    cmd_vel_ = node.nh().subscribe<geometry_msgs::Twist>(
+        cmd, 1, [this](const geometry_msgs::Twist::ConstPtr& m) { on_cmd_vel(*m); });
+    odom_ = node.nh().advertise<nav_msgs::Odometry>(odom, 1);
+    return "command " + cmd + ", odometry " + odom + " (" + odom_frame_ + " -> " + base_frame_ + ") at " +
+           p.config.text("updateRate") + " Hz, separation " + p.config.text("wheelSeparation") + " m, diameter " +
+           p.config.text("wheelDiameter") + " m, torque " + p.config.text("torque") + " N m" +
+           (broadcast_tf_ ? ", TF" : "");
+  }
+
+  void publish(const car_sim::Output& out, NodeContext& node) override {
+    const auto& o = static_cast<const car_sim::OdometryOut&>(out);
+    nav_msgs::Odometry m;
+    m.header.stamp = node.stamp(o.tick);
+    m.header.frame_id = odom_frame_;
+    m.child_frame_id = base_frame_;
+    m.pose.pose = to_pose(o.pose);
+    m.twist.twist = to_twist(o.linear, o.angular);
+    for (int i = 0; i < 6; ++i) m.pose.covariance[i * 7] = m.twist.covariance[i * 7] = cov_[i];
+    if (broadcast_tf_) {
+      geometry_msgs::TransformStamped t;
+      t.header = m.header;
+      t.child_frame_id = base_frame_;
+      t.transform = to_transform(o.pose);
+      node.tf().sendTransform(t);
+    }
+    odom_.publish(m);
+  }
+
+ private:
+  void on_cmd_vel(const geometry_msgs::Twist& m) {
+    if (!std::isfinite(m.linear.x) || !std::isfinite(m.angular.z)) {
+      const auto now = std::chrono::steady_clock::now();
+      if (last_warning_.time_since_epoch().count() == 0 || now - last_warning_ > std::chrono::seconds(1)) {
+        ROS_WARN("car: %s: rejected a cmd_vel with a non-finite value", robot_.c_str());
+        last_warning_ = now;
+      }
+      return;
+    }
+    car_sim::Twist t;
+    t.linear.x() = m.linear.x;
+    t.angular.z() = m.angular.z;
+    if (drive_) drive_->set_twist(t);
+  }
+
+  std::string robot_, odom_frame_, base_frame_;
+  bool broadcast_tf_ = false;
+  double cov_[6] = {0, 0, 0, 0, 0, 0};
+  car_sim::TwistDrive* drive_ = nullptr;
+  ros::Subscriber cmd_vel_;
+  ros::Publisher odom_;
+  std::chrono::steady_clock::time_point last_warning_;
+};
+
+}  // namespace
+
+std::unique_ptr<Adapter> make_skid_steer_drive_adapter() { return std::make_unique<SkidSteerAdapter>(); }
+
+}  // namespace car_ros

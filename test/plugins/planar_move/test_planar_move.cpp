@@ -1,0 +1,104 @@
+// libgazebo_ros_planar_move.so: a frictionless box base in the empty world, values worked out by hand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "car_sim/drive.hpp"
+#include "car_sim/world.hpp"
+#include "planar_move/planar_move.hpp"
+#include "test_util.hpp"
+
+using namespace car_sim;
+
+namespace {
+
+// A 0.4 x 0.4 x 0.2 m box of 10 kg standing on the ground (mu 0: the ground cannot drag it) with planar_move.
+std::string box_robot(const std::string& plugin_keys) {
+  return R"(<robot name="box">
+  <link name="base_footprint">
+    <inertial><mass value="10"/><origin xyz="0 0 0.1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><origin xyz="0 0 0.1"/><geometry><box size="0.4 0.4 0.2"/></geometry></collision>
+  </link>
+  <gazebo reference="base_footprint"><mu1>0</mu1><mu2>0</mu2></gazebo>
+  <gazebo><plugin name="move" filename="libgazebo_ros_planar_move.so">)" +
+         plugin_keys + R"(</plugin></gazebo>
+</robot>)";
+}
+
+std::unique_ptr<World> world_with(const std::string& keys) {
+  auto w = std::make_unique<World>(empty_world());
+  w->spawn(load_urdf_string(box_robot(keys), "box.urdf"), "box", at(0, 0, 0));
+  return w;
+}
+
+double yaw_of(const Eigen::Isometry3d& p) { return std::atan2(p.linear()(1, 0), p.linear()(0, 0)); }
+
+}  // namespace
+
+TEST(PlanarMove, WorldVelocityRotatesTheBodyCommandByYaw) {
+  // yaw 90 deg: body x is world y, body y is world -x
+  const Eigen::Vector2d v = planar_world_velocity(1.0, 0.5, M_PI / 2);
+  EXPECT_NEAR(v.x(), -0.5, 1e-12);
+  EXPECT_NEAR(v.y(), 1.0, 1e-12);
+}
+
+TEST(PlanarMove, TwistGivesTheArcAfterT) {
+  // Body twist (vx, vy, w) = (0.5, 0.2, 0.5) held for T = 2 s from the origin at yaw 0. With yaw(t) = w t:
+  //   x(T) = int_0^T (vx cos wt - vy sin wt) dt = (vx sin wT + vy (cos wT - 1)) / w
+  //        = (0.5 * 0.841471 + 0.2 * (0.540302 - 1)) / 0.5 = 0.657592 m
+  //   y(T) = int_0^T (vy cos wt + vx sin wt) dt = (vy sin wT + vx (1 - cos wT)) / w
+  //        = (0.2 * 0.841471 + 0.5 * (1 - 0.540302)) / 0.5 = 0.796286 m
+  //   yaw(T) = w T = 1 rad.
+  // Upstream sets the velocity from the yaw at the start of each 1 ms step; that lags the heading by w dt per
+  // step: at most |v| w dt T = 0.54 * 0.5 * 0.001 * 2 = 0.54 mm over the arc, so a 1 mm tolerance.
+  auto w = world_with("<odometryRate>20</odometryRate>");
+  Twist t;
+  t.linear = Eigen::Vector3d(0.5, 0.2, 0.0);
+  t.angular.z() = 0.5;
+  w->set_cmd_vel("box", t);
+  w->step(2000);
+  const ModelState s = w->model_state("box");
+  EXPECT_NEAR(s.pose.translation().x(), 0.657592, 1e-3);
+  EXPECT_NEAR(s.pose.translation().y(), 0.796286, 1e-3);
+  EXPECT_NEAR(yaw_of(s.pose), 1.0, 1e-3);
+  EXPECT_NEAR(s.pose.translation().z(), 0.0, 1e-3);  // z velocity held at 0: neither sinks nor jumps
+}
+
+TEST(PlanarMove, OdometryAtItsRateWithTheBodyTwist) {
+  // 20 Hz for 2 s: 40 messages; the finite-difference twist over 50 ms of a body moving at (0.5, 0.2) m/s
+  // while turning at 0.5 rad/s: the chord of an arc, |v| sin(w P / 2) / (w P / 2) = |v| (1 - 2.6e-5), so
+  // within 1e-3 of the command in the base frame (rotated by the end-of-period yaw: a lag of w P / 2 =
+  // 12.5 mrad turns (0.5, 0.2) by that angle: x 0.5 + 0.0025, y 0.2 - 0.00625).
+  auto w = world_with("<odometryRate>20</odometryRate>");
+  Twist t;
+  t.linear = Eigen::Vector3d(0.5, 0.2, 0.0);
+  t.angular.z() = 0.5;
+  w->set_cmd_vel("box", t);
+  w->step(2000);
+  const OutputQueue out = w->take_outputs();
+  ASSERT_EQ(out.size(), 40u);
+  const auto& o = dynamic_cast<const OdometryOut&>(*out.back());
+  EXPECT_EQ(o.tick, 2000u);
+  EXPECT_NEAR(o.linear.x(), 0.5 + 0.5 * 0.2 * 0.025, 1e-3);
+  EXPECT_NEAR(o.linear.y(), 0.2 - 0.5 * 0.5 * 0.025, 1e-3);
+  EXPECT_NEAR(o.angular.z(), 0.5, 1e-3);
+  EXPECT_NEAR(yaw_of(o.pose), 1.0, 1e-3);
+}
+
+TEST(PlanarMove, CmdTimeoutStopsTheBase) {
+  // cmdTimeout 0.5 s: 1 m/s forward moves 0.5 m (+ one 1 ms step), then stops
+  auto w = world_with("<cmdTimeout>0.5</cmdTimeout>");
+  w->set_cmd_vel("box", 1.0, 0.0);
+  w->step(2000);
+  EXPECT_NEAR(w->model_state("box").pose.translation().x(), 0.5, 2e-3);
+}
+
+TEST(PlanarMove, NegativeOdometryRateIsAnError) {
+  try {
+    world_with("<odometryRate>-1</odometryRate>");
+    FAIL() << "no error";
+  } catch (const LoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("gazebo/plugin[move]/odometryRate: must be >= 0"), std::string::npos)
+        << e.what();
+  }
+}
