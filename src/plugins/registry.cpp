@@ -9,6 +9,10 @@
 #include "laser/laser.hpp"
 #include "openni_kinect/openni_kinect.hpp"
 #include "p3d/p3d.hpp"
+#include "range/range.hpp"
+#include "block_laser/block_laser.hpp"
+#include "depth_camera/depth_camera.hpp"
+#include "velodyne/velodyne.hpp"
 
 namespace car_sim {
 
@@ -20,6 +24,10 @@ const std::vector<const PluginKind*>& plugin_kinds() {
       &openni_kinect_kind(),
       &imu_kind(),
       &p3d_kind(),
+      &range_kind(),
+      &block_laser_kind(),
+      &depth_camera_kind(),
+      &velodyne_kind(),
   };
   return kinds;
 }

@@ -11,6 +11,9 @@ std::unique_ptr<Adapter> make_camera_adapter();
 std::unique_ptr<Adapter> make_openni_kinect_adapter();
 std::unique_ptr<Adapter> make_imu_adapter();
 std::unique_ptr<Adapter> make_p3d_adapter();
+std::unique_ptr<Adapter> make_range_adapter();
+std::unique_ptr<Adapter> make_block_laser_adapter();
+std::unique_ptr<Adapter> make_velodyne_adapter();
 
 namespace {
 
@@ -21,6 +24,10 @@ const AdapterKind kAdapters[] = {
     {"openni_kinect", make_openni_kinect_adapter},
     {"imu", make_imu_adapter},
     {"p3d", make_p3d_adapter},
+    {"range", make_range_adapter},
+    {"block_laser", make_block_laser_adapter},
+    {"depth_camera", make_openni_kinect_adapter},  // same topics and messages as the Kinect
+    {"velodyne", make_velodyne_adapter},
 };
 
 }  // namespace
