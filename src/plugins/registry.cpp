@@ -13,6 +13,7 @@
 #include "block_laser/block_laser.hpp"
 #include "depth_camera/depth_camera.hpp"
 #include "velodyne/velodyne.hpp"
+#include "hector_sonar/hector_sonar.hpp"
 
 namespace car_sim {
 
@@ -28,6 +29,7 @@ const std::vector<const PluginKind*>& plugin_kinds() {
       &block_laser_kind(),
       &depth_camera_kind(),
       &velodyne_kind(),
+      &hector_sonar_kind(),
   };
   return kinds;
 }

@@ -14,6 +14,7 @@ std::unique_ptr<Adapter> make_p3d_adapter();
 std::unique_ptr<Adapter> make_range_adapter();
 std::unique_ptr<Adapter> make_block_laser_adapter();
 std::unique_ptr<Adapter> make_velodyne_adapter();
+std::unique_ptr<Adapter> make_hector_sonar_adapter();
 
 namespace {
 
@@ -28,6 +29,7 @@ const AdapterKind kAdapters[] = {
     {"block_laser", make_block_laser_adapter},
     {"depth_camera", make_openni_kinect_adapter},  // same topics and messages as the Kinect
     {"velodyne", make_velodyne_adapter},
+    {"hector_sonar", make_hector_sonar_adapter},
 };
 
 }  // namespace
