@@ -14,6 +14,9 @@
 #include "depth_camera/depth_camera.hpp"
 #include "velodyne/velodyne.hpp"
 #include "hector_sonar/hector_sonar.hpp"
+#include "hector_magnetic/hector_magnetic.hpp"
+#include "hector_gps/hector_gps.hpp"
+#include "hector_imu/hector_imu.hpp"
 
 namespace car_sim {
 
@@ -30,6 +33,9 @@ const std::vector<const PluginKind*>& plugin_kinds() {
       &depth_camera_kind(),
       &velodyne_kind(),
       &hector_sonar_kind(),
+      &hector_magnetic_kind(),
+      &hector_gps_kind(),
+      &hector_imu_kind(),
   };
   return kinds;
 }

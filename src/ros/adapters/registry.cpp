@@ -15,6 +15,9 @@ std::unique_ptr<Adapter> make_range_adapter();
 std::unique_ptr<Adapter> make_block_laser_adapter();
 std::unique_ptr<Adapter> make_velodyne_adapter();
 std::unique_ptr<Adapter> make_hector_sonar_adapter();
+std::unique_ptr<Adapter> make_hector_magnetic_adapter();
+std::unique_ptr<Adapter> make_hector_gps_adapter();
+std::unique_ptr<Adapter> make_hector_imu_adapter();
 
 namespace {
 
@@ -30,6 +33,9 @@ const AdapterKind kAdapters[] = {
     {"depth_camera", make_openni_kinect_adapter},  // same topics and messages as the Kinect
     {"velodyne", make_velodyne_adapter},
     {"hector_sonar", make_hector_sonar_adapter},
+    {"hector_magnetic", make_hector_magnetic_adapter},
+    {"hector_gps", make_hector_gps_adapter},
+    {"hector_imu", make_hector_imu_adapter},
 };
 
 }  // namespace
