@@ -17,6 +17,7 @@
 #include "hector_magnetic/hector_magnetic.hpp"
 #include "hector_gps/hector_gps.hpp"
 #include "hector_imu/hector_imu.hpp"
+#include "multicamera/multicamera.hpp"
 
 namespace car_sim {
 
@@ -36,6 +37,7 @@ const std::vector<const PluginKind*>& plugin_kinds() {
       &hector_magnetic_kind(),
       &hector_gps_kind(),
       &hector_imu_kind(),
+      &multicamera_kind(),
   };
   return kinds;
 }

@@ -18,6 +18,7 @@ std::unique_ptr<Adapter> make_hector_sonar_adapter();
 std::unique_ptr<Adapter> make_hector_magnetic_adapter();
 std::unique_ptr<Adapter> make_hector_gps_adapter();
 std::unique_ptr<Adapter> make_hector_imu_adapter();
+std::unique_ptr<Adapter> make_multicamera_adapter();
 
 namespace {
 
@@ -36,6 +37,7 @@ const AdapterKind kAdapters[] = {
     {"hector_magnetic", make_hector_magnetic_adapter},
     {"hector_gps", make_hector_gps_adapter},
     {"hector_imu", make_hector_imu_adapter},
+    {"multicamera", make_multicamera_adapter},
 };
 
 }  // namespace
