@@ -7,7 +7,7 @@ import unittest
 import numpy as np
 import rospy
 import rostest
-from sensor_msgs.msg import PointCloud2, PointField, Range
+from sensor_msgs.msg import CameraInfo, Image, PointCloud2, PointField, Range
 
 from simtest import Recorder, call
 
@@ -19,11 +19,17 @@ class RaySensorsTest(unittest.TestCase):
         rospy.init_node('ray_sensors_test')
         cls.sonar = Recorder('/sonar', Range)
         cls.velodyne = Recorder('/velodyne_points', PointCloud2)
-        cls.sonar.wait_connected()
-        cls.velodyne.wait_connected()
+        cls.left = Recorder('/stereo/left/image_raw', Image)
+        cls.right = Recorder('/stereo/right/image_raw', Image)
+        cls.right_info = Recorder('/stereo/right/camera_info', CameraInfo)
+        for r in (cls.sonar, cls.velodyne, cls.left, cls.right, cls.right_info):
+            r.wait_connected()
         call('/gazebo/unpause_physics')
         cls.sonar_msgs = cls.sonar.until(1.0)
         cls.velodyne_msgs = cls.velodyne.until(1.0)
+        cls.left_msgs = cls.left.until(1.0)
+        cls.right_msgs = cls.right.until(1.0)
+        cls.right_info_msgs = cls.right_info.until(1.0)
 
     # The sonar sits 0.1 m ahead of the cube's centre (x = 0.1 m); its middle ray meets the wall x = 3 at
     # 2.9 m, every other ray of its +-0.15 rad cone further (the downward ones meet the floor at
@@ -58,6 +64,21 @@ class RaySensorsTest(unittest.TestCase):
             self.assertEqual(len(q), 361)
             elevation = np.arctan2(q['z'], np.hypot(q['x'], q['y']))
             np.testing.assert_allclose(elevation, math.radians(-15 + 2 * j), atol=2e-6)
+
+
+    # The stereo pair: one stamp per pair (both rendered at the same tick), the right camera's P[3] =
+    # -f hackBaseline with f = 32 / (2 tan 0.5) = 29.27 px: -4.098.
+    def test_stereo_pair_shares_stamps_and_the_right_info_carries_the_baseline(self):
+        left = {m.header.stamp.to_nsec() for m in self.left_msgs}
+        right = {m.header.stamp.to_nsec() for m in self.right_msgs}
+        self.assertTrue(left & right)
+        self.assertEqual(sorted(left)[:3], sorted(right)[:3])
+        m = self.right_info_msgs[-1]
+        f = 32 / (2 * math.tan(0.5))
+        self.assertEqual(m.header.frame_id, 'stereo_optical')
+        self.assertAlmostEqual(m.P[0], f, places=6)
+        self.assertAlmostEqual(m.P[3], -f * 0.14, places=6)
+        self.assertEqual((self.left_msgs[-1].width, self.left_msgs[-1].height), (32, 24))
 
 
 if __name__ == '__main__':
