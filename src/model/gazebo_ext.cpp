@@ -89,6 +89,8 @@ void read_sensor(RobotModel* m, const tinyxml2::XMLElement* s, const std::string
         note(m, Severity::Error, "sensor-value", where + "/pose", "pose '" + text_of(c) + "' is not 6 numbers",
              c->GetLineNum());
     } else if (c->FirstChildElement()) {
+      // a named block (a multicamera's <camera name="left">) keeps its name, as "TAG/@name", before its keys
+      if (c->Attribute("name")) spec.params.emplace_back(tag + "/@name", c->Attribute("name"));
       flatten(c, tag, &spec.params);
     } else {
       spec.params.emplace_back(tag, text_of(c));

@@ -19,6 +19,15 @@
 #include "hand_of_god/hand_of_god.hpp"
 #include "joint_pose_trajectory/joint_pose_trajectory.hpp"
 #include "tricycle_drive/tricycle_drive.hpp"
+#include "range/range.hpp"
+#include "block_laser/block_laser.hpp"
+#include "depth_camera/depth_camera.hpp"
+#include "velodyne/velodyne.hpp"
+#include "hector_sonar/hector_sonar.hpp"
+#include "hector_magnetic/hector_magnetic.hpp"
+#include "hector_gps/hector_gps.hpp"
+#include "hector_imu/hector_imu.hpp"
+#include "multicamera/multicamera.hpp"
 
 namespace car_sim {
 
@@ -40,6 +49,15 @@ const std::vector<const PluginKind*>& plugin_kinds() {
       &hand_of_god_kind(),
       &joint_pose_trajectory_kind(),
       &tricycle_drive_kind(),
+      &range_kind(),
+      &block_laser_kind(),
+      &depth_camera_kind(),
+      &velodyne_kind(),
+      &hector_sonar_kind(),
+      &hector_magnetic_kind(),
+      &hector_gps_kind(),
+      &hector_imu_kind(),
+      &multicamera_kind(),
   };
   return kinds;
 }

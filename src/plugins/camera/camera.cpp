@@ -111,7 +111,8 @@ CameraPlugin::CameraPlugin(const PluginConfig& c, const std::string& robot, uint
   proto_.has_depth = depth;
   if (depth) {
     cutoff_ = c.number("pointCloudCutoff");
-    cutoff_max_ = c.number("pointCloudCutoffMax");
+    // the generic depth camera has no upper cutoff
+    cutoff_max_ = c.has("pointCloudCutoffMax") ? c.number("pointCloudCutoffMax") : kInf;
   }
   gaussian_ = c.text("camera/noise/type") == "gaussian";
   noise_mean_ = c.number("camera/noise/mean");

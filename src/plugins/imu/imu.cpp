@@ -1,5 +1,6 @@
 // The IMU: orientation from the true pose; angular velocity and linear acceleration (gravity included) by finite
-// differences of the sensor frame's last three poses; gaussianNoise as stddev on each component.
+// differences of the sensor frame's last three poses; the sensor's <noise> (per axis: mean, stddev, a bias drawn
+// once), then gaussianNoise as stddev on each component.
 #include "imu.hpp"
 
 #include <algorithm>
@@ -12,6 +13,63 @@ constexpr ParamType T = ParamType::Text;
 constexpr ParamType Fr = ParamType::Frame;
 constexpr ParamType N = ParamType::Number;
 
+// One axis of the sensor's <noise>: [rad/s] for rates, [m/s^2] for accelerations.
+struct AxisNoise {
+  bool on = false;
+  double mean = 0, stddev = 0, bias_mean = 0, bias_stddev = 0;
+  double bias = 0;  // drawn once
+};
+
+const char* const kQuantity[2] = {"angular_velocity", "linear_acceleration"};
+const char* const kOldQuantity[2] = {"rate", "accel"};
+const char* const kAxis[3] = {"x", "y", "z"};
+const char* const kNoiseKey[4] = {"mean", "stddev", "bias_mean", "bias_stddev"};
+
+// An axis's noise: the SDF 1.5+ per-axis block imu/<quantity>/<axis>/noise/..., else the old form
+// imu/noise/<rate|accel>/... (with imu/noise/type) for all three axes. The per-axis block's type is an XML
+// attribute car's sensor reader does not keep: a block with any non-zero value is Gaussian.
+AxisNoise axis_noise(const PluginConfig& c, int q, int k) {
+  AxisNoise n;
+  double v[4];
+  bool given = false;
+  for (int i = 0; i < 4; ++i) {
+    const std::string key = std::string("imu/") + kQuantity[q] + "/" + kAxis[k] + "/noise/" + kNoiseKey[i];
+    v[i] = c.number(key);
+    given = given || !c.param(key).from_default;
+  }
+  if (!given) {
+    if (c.text("imu/noise/type") != "gaussian") return n;
+    for (int i = 0; i < 4; ++i) v[i] = c.number(std::string("imu/noise/") + kOldQuantity[q] + "/" + kNoiseKey[i]);
+  }
+  n.mean = v[0];
+  n.stddev = v[1];
+  n.bias_mean = v[2];
+  n.bias_stddev = v[3];
+  n.on = v[0] != 0 || v[1] != 0 || v[2] != 0 || v[3] != 0;
+  return n;
+}
+
+// The sensor keys: update_rate and every noise key, defaults 0 (no noise).
+const std::vector<ParamDef>& imu_sensor_schema() {
+  static const std::vector<std::string> keys = [] {
+    std::vector<std::string> ks;
+    for (int q = 0; q < 2; ++q)
+      for (int k = 0; k < 3; ++k)
+        for (int i = 0; i < 4; ++i)
+          ks.push_back(std::string("imu/") + kQuantity[q] + "/" + kAxis[k] + "/noise/" + kNoiseKey[i]);
+    for (int q = 0; q < 2; ++q)
+      for (int i = 0; i < 4; ++i) ks.push_back(std::string("imu/noise/") + kOldQuantity[q] + "/" + kNoiseKey[i]);
+    return ks;
+  }();
+  static const std::vector<ParamDef> s = [] {
+    std::vector<ParamDef> d = {{"update_rate", N, "0", "Hz"}, {"imu/noise/type", T, "none", ""}};
+    for (const auto& k : keys)
+      d.push_back({k.c_str(), N, "0", k.find("angular_velocity") != std::string::npos || k.find("/rate/") != std::string::npos ? "rad/s" : "m/s^2"});
+    return d;
+  }();
+  return s;
+}
+
 class Imu : public Plugin {
  public:
   Imu(const PluginConfig& c, const std::string& robot, uint64_t seed)
@@ -20,6 +78,23 @@ class Imu : public Plugin {
         stddev_(c.number("gaussianNoise")),
         rng0_(plugin_rng(seed, robot, c.sensor.empty() ? c.name : c.sensor)), rng_(rng0_) {
     proto_.sensor = c.sensor.empty() ? c.name : c.sensor;
+    if (!c.sensor.empty()) {
+      // the sensor's <noise>: per axis; each bias drawn once, N(bias_mean, bias_stddev) with a random sign, from
+      // the instance's generator (so the same seed gives the same biases, also after a reset)
+      std::mt19937_64 g = rng0_;
+      for (int q = 0; q < 2; ++q)
+        for (int k = 0; k < 3; ++k) {
+          AxisNoise& n = noise_[q][k];
+          n = axis_noise(c, q, k);
+          if (n.bias_stddev > 0 || n.bias_mean != 0) {
+            std::normal_distribution<double> b(n.bias_mean, n.bias_stddev > 0 ? n.bias_stddev : 1.0);
+            n.bias = n.bias_stddev > 0 ? b(g) : n.bias_mean;
+            if (std::uniform_real_distribution<double>(0.0, 1.0)(g) < 0.5) n.bias = -n.bias;
+          }
+        }
+      rng0_ = g;
+      rng_ = rng0_;
+    }
   }
 
   double update_rate() const override { return rate_; }
@@ -51,6 +126,11 @@ class Imu : public Plugin {
     const Eigen::Vector3d v1 = (p[1].translation() - p[0].translation()) / dt;
     const Eigen::Vector3d v2 = (p[2].translation() - p[1].translation()) / dt;
     Eigen::Vector3d a = Rt * ((v2 - v1) / dt - ctx.world->environment().gravity);
+    // the sensor's noise (SDF <noise>): N(mean, stddev) + bias per axis
+    for (int k = 0; k < 3; ++k) {
+      w[k] += sample(noise_[0][k]);
+      a[k] += sample(noise_[1][k]);
+    }
     if (stddev_ > 0) {
       std::normal_distribution<double> noise(0.0, stddev_);
       for (int k = 0; k < 3; ++k) w[k] += noise(rng_);
@@ -69,13 +149,26 @@ class Imu : public Plugin {
   double rate_, stddev_;
   std::mt19937_64 rng0_, rng_;  // the noise generator as seeded, and as it runs
   ImuOut proto_;
+  AxisNoise noise_[2][3];  // [angular velocity, linear acceleration][x, y, z]
   Eigen::Isometry3d history_[3];
+
+  double sample(const AxisNoise& n) {
+    if (!n.on) return 0.0;
+    double e = n.mean + n.bias;
+    if (n.stddev > 0) e += std::normal_distribution<double>(0.0, n.stddev)(rng_);
+    return e;
+  }
   int count_ = 0;
 };
 
 void finish(ResolveContext& ctx) {
   PluginConfig& c = ctx.config();
   if (ctx.sensor()) {
+    for (const ParamDef& d : imu_sensor_schema())
+      if (std::string(d.key).find("stddev") != std::string::npos && c.number(d.key) < 0)
+        ctx.fail_sensor(d.key, "stddev must be >= 0");
+    const std::string& t = c.text("imu/noise/type");
+    if (t != "none" && t != "gaussian") ctx.fail_sensor("imu/noise/type", "unknown noise type '" + t + "'");
     for (const char* key : {"frameName", "bodyName"})
       if (c.text(key).empty()) ctx.set(key, ctx.sensor()->link);
     return;
@@ -102,7 +195,7 @@ const PluginKind& imu_kind() {
     k.filenames = {"libgazebo_ros_imu_sensor.so", "libgazebo_ros_imu.so"};
     k.model_level = true;
     k.sensor_types = {"imu"};
-    k.sensor_schema = {{"update_rate", N, "0", "Hz"}};
+    k.sensor_schema = imu_sensor_schema();
     k.schema = {
         {"robotNamespace", T, "", ""},
         {"bodyName", T, "", ""},

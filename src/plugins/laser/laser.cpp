@@ -16,10 +16,11 @@ constexpr ParamType N = ParamType::Number;
 constexpr ParamType I = ParamType::Integer;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr double kInfD = std::numeric_limits<double>::infinity();
-// Stated limits, checked before anything is allocated: rays per scan (samples x resolution; a scan holds 40 bytes a
-// ray) and rays per second (rays per scan x update_rate).
+// Stated limits, checked before anything is allocated: samples per axis, rays per scan (horizontal x vertical
+// samples x resolution; a scan holds 40 bytes a ray; a 64-beam velodyne of 2048 columns is 131072) and rays per
+// second (rays per scan x update_rate).
 constexpr double kMaxSamples = 100000;
-constexpr double kMaxRaysPerScan = 100000;
+constexpr double kMaxRaysPerScan = 1000000;
 constexpr double kMaxRaysPerSecond = 1e8;
 
 class Laser : public Plugin {
@@ -93,21 +94,26 @@ class Laser : public Plugin {
   std::vector<RayHit> hits_;
 };
 
-void finish(ResolveContext& ctx) {
+}  // namespace
+
+void finish_ray(ResolveContext& ctx) {
   const PluginConfig& c = ctx.config();
-  if (c.number("ray/scan/horizontal/samples") < 1) ctx.fail_sensor("ray/scan/horizontal/samples", "samples must be >= 1");
-  if (!(c.number("ray/scan/horizontal/resolution") > 0))
-    ctx.fail_sensor("ray/scan/horizontal/resolution", "resolution must be > 0");
-  const double rays = c.number("ray/scan/horizontal/samples") * c.number("ray/scan/horizontal/resolution");
+  for (const char* axis : {"horizontal", "vertical"}) {
+    const std::string k = std::string("ray/scan/") + axis + "/";
+    if (c.number(k + "samples") < 1) ctx.fail_sensor(k + "samples", "samples must be >= 1");
+    if (!(c.number(k + "resolution") > 0)) ctx.fail_sensor(k + "resolution", "resolution must be > 0");
+    if (c.number(k + "min_angle") > c.number(k + "max_angle"))
+      ctx.fail_sensor(k + "min_angle",
+                      "min_angle " + c.text(k + "min_angle") + " > max_angle " + c.text(k + "max_angle"));
+  }
+  const double rays = c.number("ray/scan/horizontal/samples") * c.number("ray/scan/horizontal/resolution") *
+                      std::max(1.0, c.number("ray/scan/vertical/samples") * c.number("ray/scan/vertical/resolution"));
   if (rays > kMaxRaysPerScan)
     ctx.fail_sensor("ray/scan/horizontal/resolution", "samples x resolution = " + std::to_string(static_cast<long long>(rays)) +
-                                                          " rays per scan is above the limit 100000");
+                                                          " rays per scan is above the limit 1000000");
   if (rays * c.number("update_rate") > kMaxRaysPerSecond)
     ctx.fail_sensor("update_rate", "samples x resolution x update_rate = " + std::to_string(static_cast<long long>(rays * c.number("update_rate"))) +
                                        " rays/s is above the limit 1e8 rays/s");
-  if (c.number("ray/scan/horizontal/min_angle") > c.number("ray/scan/horizontal/max_angle"))
-    ctx.fail_sensor("ray/scan/horizontal/min_angle", "min_angle " + c.text("ray/scan/horizontal/min_angle") +
-                                                         " > max_angle " + c.text("ray/scan/horizontal/max_angle"));
   if (c.number("ray/range/min") < 0) ctx.fail_sensor("ray/range/min", "min must be >= 0");
   if (c.number("ray/range/min") >= c.number("ray/range/max"))
     ctx.fail_sensor("ray/range/min", "min " + c.text("ray/range/min") + " >= max " + c.text("ray/range/max"));
@@ -115,6 +121,63 @@ void finish(ResolveContext& ctx) {
   if (nt != "none" && nt != "gaussian") ctx.fail_sensor("ray/noise/type", "unknown noise type '" + nt + "'");
   if (c.number("ray/noise/stddev") < 0) ctx.fail_sensor("ray/noise/stddev", "stddev must be >= 0");
 }
+
+const std::vector<ParamDef>& ray_sensor_schema() {
+  // SDF 1.6 defaults
+  static const std::vector<ParamDef> s = {
+      {"update_rate", N, "0", "Hz"},
+      {"ray/scan/horizontal/samples", I, "640", "", -kInfD, kMaxSamples},
+      {"ray/scan/horizontal/resolution", N, "1", "", -kInfD, kMaxSamples},
+      {"ray/scan/horizontal/min_angle", N, "0", "rad"},
+      {"ray/scan/horizontal/max_angle", N, "0", "rad"},
+      {"ray/scan/vertical/samples", I, "1", "", -kInfD, kMaxSamples},
+      {"ray/scan/vertical/resolution", N, "1", "", -kInfD, kMaxSamples},
+      {"ray/scan/vertical/min_angle", N, "0", "rad"},
+      {"ray/scan/vertical/max_angle", N, "0", "rad"},
+      {"ray/range/min", N, "0", "m"},
+      {"ray/range/max", N, "0", "m"},
+      {"ray/range/resolution", N, "0", "m"},
+      {"ray/noise/type", T, "none", ""},
+      {"ray/noise/mean", N, "0", "m"},
+      {"ray/noise/stddev", N, "0", "m"},
+  };
+  return s;
+}
+
+RayGrid::RayGrid(const PluginConfig& c) {
+  nh_ = std::max(1, static_cast<int>(c.number("ray/scan/horizontal/samples") * c.number("ray/scan/horizontal/resolution")));
+  nv_ = std::max(1, static_cast<int>(c.number("ray/scan/vertical/samples") * c.number("ray/scan/vertical/resolution")));
+  hmin_ = c.number("ray/scan/horizontal/min_angle");
+  hmax_ = c.number("ray/scan/horizontal/max_angle");
+  vmin_ = c.number("ray/scan/vertical/min_angle");
+  vmax_ = c.number("ray/scan/vertical/max_angle");
+  rmin_ = static_cast<float>(c.number("ray/range/min"));
+  rmax_ = static_cast<float>(c.number("ray/range/max"));
+  dirs_.resize(3 * static_cast<size_t>(size()));
+  for (int j = 0; j < nv_; ++j) {
+    const double v = pitch(j);
+    for (int i = 0; i < nh_; ++i) {
+      const double h = yaw(i);
+      float* d = &dirs_[3 * (static_cast<size_t>(j) * nh_ + i)];
+      d[0] = static_cast<float>(std::cos(v) * std::cos(h));
+      d[1] = static_cast<float>(std::cos(v) * std::sin(h));
+      d[2] = static_cast<float>(std::sin(v));
+    }
+  }
+  hits_.resize(size());
+}
+
+double RayGrid::yaw(int i) const { return nh_ > 1 ? hmin_ + i * (hmax_ - hmin_) / (nh_ - 1) : hmin_; }
+double RayGrid::pitch(int j) const { return nv_ > 1 ? vmin_ + j * (vmax_ - vmin_) / (nv_ - 1) : vmin_; }
+
+const std::vector<RayHit>& RayGrid::cast(const StepContext& ctx, const Eigen::Isometry3d& pose) {
+  ctx.world->rays().cast(pose.translation(), pose.linear(), dirs_.data(), size(), &rmin_, false, rmax_, hits_.data());
+  return hits_;
+}
+
+namespace {
+
+void finish(ResolveContext& ctx) { finish_ray(ctx); }
 
 }  // namespace
 
@@ -135,20 +198,7 @@ const PluginKind& laser_kind() {
     k.filenames = {"libgazebo_ros_laser.so", "libgazebo_ros_gpu_laser.so"};
     k.model_level = false;
     k.sensor_types = {"ray", "gpu_ray"};
-    // SDF 1.6 defaults
-    k.sensor_schema = {
-        {"update_rate", N, "0", "Hz"},
-        {"ray/scan/horizontal/samples", I, "640", "", -kInfD, kMaxSamples},
-        {"ray/scan/horizontal/resolution", N, "1", "", -kInfD, kMaxSamples},
-        {"ray/scan/horizontal/min_angle", N, "0", "rad"},
-        {"ray/scan/horizontal/max_angle", N, "0", "rad"},
-        {"ray/range/min", N, "0", "m"},
-        {"ray/range/max", N, "0", "m"},
-        {"ray/range/resolution", N, "0", "m"},
-        {"ray/noise/type", T, "none", ""},
-        {"ray/noise/mean", N, "0", "m"},
-        {"ray/noise/stddev", N, "0", "m"},
-    };
+    k.sensor_schema = ray_sensor_schema();
     k.schema = {
         {"robotNamespace", T, "", ""},
         {"topicName", T, "/world", ""},

@@ -21,6 +21,14 @@ std::unique_ptr<Adapter> make_ft_sensor_adapter();
 std::unique_ptr<Adapter> make_hand_of_god_adapter();
 std::unique_ptr<Adapter> make_joint_pose_trajectory_adapter();
 std::unique_ptr<Adapter> make_tricycle_drive_adapter();
+std::unique_ptr<Adapter> make_range_adapter();
+std::unique_ptr<Adapter> make_block_laser_adapter();
+std::unique_ptr<Adapter> make_velodyne_adapter();
+std::unique_ptr<Adapter> make_hector_sonar_adapter();
+std::unique_ptr<Adapter> make_hector_magnetic_adapter();
+std::unique_ptr<Adapter> make_hector_gps_adapter();
+std::unique_ptr<Adapter> make_hector_imu_adapter();
+std::unique_ptr<Adapter> make_multicamera_adapter();
 
 namespace {
 
@@ -41,6 +49,15 @@ const AdapterKind kAdapters[] = {
     {"hand_of_god", make_hand_of_god_adapter},
     {"joint_pose_trajectory", make_joint_pose_trajectory_adapter},
     {"tricycle_drive", make_tricycle_drive_adapter},
+    {"range", make_range_adapter},
+    {"block_laser", make_block_laser_adapter},
+    {"depth_camera", make_openni_kinect_adapter},  // same topics and messages as the Kinect
+    {"velodyne", make_velodyne_adapter},
+    {"hector_sonar", make_hector_sonar_adapter},
+    {"hector_magnetic", make_hector_magnetic_adapter},
+    {"hector_gps", make_hector_gps_adapter},
+    {"hector_imu", make_hector_imu_adapter},
+    {"multicamera", make_multicamera_adapter},
 };
 
 }  // namespace
