@@ -162,7 +162,7 @@ def ros_node(seconds, cloud=False):
         os.environ['ROS_MASTER_URI'] = env['ROS_MASTER_URI']
         import rospy
         from rosgraph_msgs.msg import Clock
-        from car.srv import GetModelState
+        from gazebo_msgs.srv import GetModelState
         rospy.init_node('bench_physics', anonymous=True, disable_signals=True)
         rospy.wait_for_service('/gazebo/get_model_state', timeout=60)
         get = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)

@@ -24,6 +24,7 @@ PY_DEBIAN = {
     'rospkg': ('python3-rospkg', 'python3-rospkg'),
     'roslib': ('roslib', 'python3-roslib'),
     'rosunit': ('rosunit', 'python3-rosunit'),
+    'genmsg': ('genmsg', 'python3-genmsg'),
     'rosservice': ('rosservice', 'python3-rosservice'),
     'rostopic': ('rostopic', 'python3-rostopic'),
     'rosnode': ('rosnode', 'python3-rosnode'),

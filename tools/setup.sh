@@ -17,7 +17,7 @@ DEB_PACKAGES=(
   libgeometry-msgs-dev python3-geometry-msgs libstd-srvs-dev python3-std-srvs libros-rosgraph-msgs-dev python3-rosgraph-msgs
   ros-message-generation ros-message-runtime python3-tf2-msgs libtf2-msgs-dev
   libvisualization-msgs-dev python3-visualization-msgs
-  libtrajectory-msgs-dev python3-trajectory-msgs
+  libtrajectory-msgs-dev python3-trajectory-msgs python3-genmsg python3-rosservice
   ros-robot-state-publisher joint-state-publisher rviz rosbash
   googletest python3-pytest
 )
@@ -68,6 +68,19 @@ for entry in "$ROOT"/*; do
 done
 for link in .ws/src/car/*; do
   [ -e "$link" ] || rm -f "$link"
+done
+# compat/: drop-in packages Debian lacks (gazebo_msgs), linked as .ws/src/NAME beside car. CAR_COMPAT=0 leaves
+# them out, and so does a real package of that name installed on the system (its share/NAME/package.xml).
+for pkg in "$ROOT"/compat/*/; do
+  name="$(basename "$pkg")"
+  real=""
+  for prefix in /opt/ros/noetic /usr /usr/local; do [ -f "$prefix/share/$name/package.xml" ] && real="$prefix"; done
+  if [ "${CAR_COMPAT:-1}" = 0 ] || [ -n "$real" ]; then
+    [ -n "$real" ] && echo "setup: using the installed $name in $real, not compat/$name"
+    rm -f ".ws/src/$name"
+  else
+    ln -sfn "../../compat/$name" ".ws/src/$name"
+  fi
 done
 set +u
 # shellcheck disable=SC1091

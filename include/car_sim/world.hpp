@@ -45,6 +45,36 @@ struct RobotInfo {
   Eigen::Isometry3d spawn_pose = Eigen::Isometry3d::Identity();
 };
 
+// ---- the gazebo_ros API's records (World's "gazebo_ros API" section; docs/COMPAT.md) ----------------------------
+
+// A link of a model, found by Gazebo's scoped name "MODEL::LINK" or by its plain name.
+struct LinkRef {
+  std::string model, link;
+  bool robot = false;  // a spawned robot (else a world model)
+};
+
+struct LinkProperties {
+  double mass = 0.0;                                       // [kg]
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();           // [m], link frame
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();       // [kg m^2] about the com, link-frame axes
+  bool gravity = true;
+};
+
+struct ModelProperties {
+  std::vector<std::string> bodies;      // links that are bodies (fixed joints merge a child into its parent)
+  std::vector<std::string> geoms;       // collision names, Gazebo's URDF naming: LINK_collision[_N]
+  std::vector<std::string> joints;      // moving joints
+  bool is_static = false;
+};
+
+struct JointProperties {
+  std::string model;
+  JointType type = JointType::Revolute;
+  double position = 0.0;  // [rad] or [m]
+  double velocity = 0.0;  // [rad/s] or [m/s]
+  double damping = 0.0;   // URDF <dynamics damping>
+};
+
 class World {
  public:
   explicit World(WorldDescription desc, WorldOptions options = WorldOptions());
@@ -118,6 +148,40 @@ class World {
 
   // Contacts of the last step with a positive normal force.
   std::vector<Contact> contacts() const;
+
+  // ---- gazebo_ros API (world.cpp, physics side in src/physics/services.cpp) -------------------------------
+  // Errors are std::invalid_argument with the reason; a failed call leaves the world untouched.
+
+  // A link by "MODEL::LINK" or plain "LINK" (the first model in model_names() order that has one).
+  LinkRef find_link(const std::string& name) const;
+  // A link's pose and twist, world frame (twist of the link frame's origin).
+  ModelState link_state(const LinkRef& link) const;
+  // Moves the link's whole model rigidly so that the link gets pose and twist (world frame); joint positions and
+  // speeds are kept. Throws for a static model or a non-finite state.
+  void set_link_state(const LinkRef& link, const ModelState& s);
+  LinkProperties link_properties(const LinkRef& link) const;
+  ModelProperties model_properties(const std::string& model) const;
+  // A moving joint by "MODEL::JOINT" or plain "JOINT" (the first robot that has one).
+  JointProperties joint_properties(const std::string& joint) const;
+  // Sets joint positions [rad] or [m] of a robot (speeds to zero); the root link stays where it is. Throws for an
+  // unknown model or joint or a non-finite position, before changing anything.
+  void set_joint_positions(const std::string& model, const std::vector<std::string>& joints,
+                           const std::vector<double>& positions);
+  // Centre of mass [m], world frame, of the body that carries a link.
+  Eigen::Vector3d body_com(const LinkRef& link) const;
+  // Force [N] and torque [N m], world frame, at the carrying body's com, on every step that starts at a sim time t
+  // with start <= t <= start + duration (duration < 0: until cleared); start before now means now.
+  void apply_wrench(const LinkRef& link, const Eigen::Vector3d& force, const Eigen::Vector3d& torque, double start,
+                    double duration);
+  // Effort [N m] or [N] on a moving joint, with the same timing.
+  void apply_joint_effort(const std::string& joint, double effort, double start, double duration);
+  // Removes every wrench job on a link (by its scoped or plain name) / effort job on a joint; the count removed.
+  int clear_wrenches(const std::string& link);
+  int clear_joint_efforts(const std::string& joint);
+  Eigen::Vector3d gravity() const;  // [m/s^2], world frame
+  void set_gravity(const Eigen::Vector3d& g);
+  int solver_iterations() const;
+  void set_solver_iterations(int n);
 
  private:
   struct Impl;

@@ -120,7 +120,7 @@ def main(argv=None) -> int:
                 if name in moving:
                     latest[name] = pose
 
-        from car.msg import ModelStates
+        from gazebo_msgs.msg import ModelStates
         rospy.Subscriber('/gazebo/model_states', ModelStates, on_states, queue_size=1)
         last_sent = {}
         r = rospy.Rate(rate)

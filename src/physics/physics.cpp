@@ -386,6 +386,13 @@ class BulletRobot : public Robot {
   const BodyTree& tree() const { return tree_; }
   const RobotModel& model() const { return model_; }
   btMultiBody* mb() const { return mb_.get(); }
+  btMultiBody* multibody() const override { return mb_.get(); }
+  int body_of_link(const std::string& link) const override {
+    const auto it = tree_.body_of_link.find(link);
+    if (it == tree_.body_of_link.end())
+      throw std::invalid_argument("robot '" + name_ + "' has no link '" + link + "'");
+    return it->second - 1;
+  }
 
   int joint(const std::string& name) const override {
     const auto it = joint_link_.find(name);
@@ -802,6 +809,14 @@ void Physics::step(double dt) {
   impl_->world.stepSimulation(dt, 0, dt);
   ++impl_->steps;
   if (const std::string bad = first_non_finite(impl_->world, impl_->object_names); !bad.empty()) throw NonFiniteState(bad);
+}
+
+btMultiBodyDynamicsWorld& Physics::bullet() { return impl_->world; }
+
+btRigidBody* Physics::world_model_body(const std::string& model, size_t link) {
+  for (auto& dm : impl_->dyn_models)
+    if (dm.name == model && link < dm.bodies.size()) return dm.bodies[link];
+  return nullptr;
 }
 
 std::optional<ModelState> Physics::world_model_state(const std::string& name) const {

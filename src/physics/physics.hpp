@@ -14,6 +14,10 @@
 #include "car_sim/raycast.hpp"
 #include "car_sim/state.hpp"
 
+class btMultiBody;
+class btMultiBodyDynamicsWorld;
+class btRigidBody;
+
 namespace car_sim {
 namespace physics {
 
@@ -56,6 +60,11 @@ class Physics {
   const RayScene& rays();
   void invalidate_rays();
 
+  // Bullet's world and a dynamic world model's link body (nullptr: static or unknown), for the gazebo_ros API
+  // services (services.cpp).
+  btMultiBodyDynamicsWorld& bullet();
+  btRigidBody* world_model_body(const std::string& model, size_t link);
+
   struct Impl;  // Bullet's objects (physics.cpp only)
 
  private:
@@ -88,6 +97,10 @@ class Robot {
   virtual void enable_joint_wrench(int joint) = 0;
   virtual Wrench joint_wrench(int joint) const = 0;
   virtual std::vector<LinkContact> link_contacts(const std::string& link) const = 0;
+  // Bullet's multibody and the index of its link that carries a robot link (-1: the base; fixed joints merge
+  // links into one body), for the gazebo_ros API services (services.cpp). Throws for an unknown link.
+  virtual btMultiBody* multibody() const = 0;
+  virtual int body_of_link(const std::string& link) const = 0;
 };
 
 }  // namespace physics

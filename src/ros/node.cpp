@@ -26,12 +26,20 @@ bool SimNode::init() {
   pnh_.param("joint_state_rate", joint_state_rate_, 50.0);
   pnh_.param("model_states_rate", model_states_rate_, 100.0);
   pnh_.param("solver_iterations", solver_iterations_, 10);
+  // empty_world.launch's use_clock_frequency / pub_clock_frequency and enable_ros_network (gazebo_ros's names)
+  pnh_.param("pub_clock_frequency", clock_rate_, clock_rate_);
+  bool ros_network = true;
+  pnh_.param("enable_ros_network", ros_network, true);
+  std::string ignored;
+  if (pnh_.getParam("ignored_launch_args", ignored) && !ignored.empty())
+    ROS_INFO("car: launch arguments without effect in car (headless, Bullet, no recording): %s", ignored.c_str());
   int seed = 0;
   pnh_.param("seed", seed, 0);
   if (!(rtf_ >= 0.0) || !std::isfinite(rtf_)) {
     ROS_FATAL("car: parameter ~rtf must be >= 0 (0 = as fast as possible), got %g", rtf_);
     return false;
   }
+  add_exported_model_paths();
   car_sim::WorldOptions options;
   options.solver_iterations = solver_iterations_;
   options.seed = static_cast<uint64_t>(seed);
@@ -45,8 +53,11 @@ bool SimNode::init() {
   nh_.setParam("/use_sim_time", true);
   log_world(world_file);
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
-  model_states_pub_ = gz_.advertise<car::ModelStates>("model_states", 100);
-  advertise_services();
+  model_states_pub_ = gz_.advertise<gazebo_msgs::ModelStates>("model_states", 100);
+  if (ros_network)
+    advertise_services();
+  else
+    ROS_INFO("car: enable_ros_network is false: no /gazebo services or set_*_state topics");
   publish_clock();
   return true;
 }
@@ -69,11 +80,12 @@ void SimNode::run() {
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
       continue;
     }
-    if (was_paused || tick0 > world_->tick()) {
-      // (re)start pacing after a pause or a reset
+    if (was_paused || tick0 > world_->tick() || repace_) {
+      // (re)start pacing after a pause, a reset or a new real-time factor
       wall0 = clock::now();
       tick0 = world_->tick();
       was_paused = false;
+      repace_ = false;
     }
     try {
       world_->step(1);
@@ -143,7 +155,7 @@ void SimNode::publish_outputs() {
     }
   }
   if (tick % period_of(model_states_rate_) == 0 && model_states_pub_.getNumSubscribers() > 0) {
-    car::ModelStates ms;
+    gazebo_msgs::ModelStates ms;
     for (const auto& name : world_->model_names()) {
       const car_sim::ModelState s = world_->model_state(name);
       ms.name.push_back(name);
@@ -152,6 +164,7 @@ void SimNode::publish_outputs() {
     }
     model_states_pub_.publish(ms);
   }
+  if (tick % period_of(model_states_rate_) == 0 && link_states_pub_.getNumSubscribers() > 0) publish_link_states();
 }
 
 void SimNode::update_activity() {

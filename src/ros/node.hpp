@@ -3,18 +3,33 @@
 // outputs to its kind's adapter (adapters/). All maths lives in the core.
 #pragma once
 
-#include <car/DeleteModel.h>
-#include <car/GetModelState.h>
-#include <car/GetWorldProperties.h>
-#include <car/ModelStates.h>
-#include <car/SetModelState.h>
-#include <car/SpawnModel.h>
+#include <gazebo_msgs/DeleteModel.h>
+#include <gazebo_msgs/GetModelState.h>
+#include <gazebo_msgs/GetWorldProperties.h>
+#include <gazebo_msgs/ModelStates.h>
+#include <gazebo_msgs/SetModelState.h>
+#include <gazebo_msgs/SpawnModel.h>
+// gazebo_ros API services (services.cpp)
+#include <gazebo_msgs/ApplyBodyWrench.h>
+#include <gazebo_msgs/ApplyJointEffort.h>
+#include <gazebo_msgs/BodyRequest.h>
+#include <gazebo_msgs/GetJointProperties.h>
+#include <gazebo_msgs/GetLinkProperties.h>
+#include <gazebo_msgs/GetLinkState.h>
+#include <gazebo_msgs/GetModelProperties.h>
+#include <gazebo_msgs/GetPhysicsProperties.h>
+#include <gazebo_msgs/JointRequest.h>
+#include <gazebo_msgs/LinkStates.h>
+#include <gazebo_msgs/SetLinkState.h>
+#include <gazebo_msgs/SetModelConfiguration.h>
+#include <gazebo_msgs/SetPhysicsProperties.h>
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
 #include <tf2_ros/transform_broadcaster.h>
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +37,11 @@
 #include "car_sim/world.hpp"
 
 namespace car_ros {
+
+// model_paths.cpp: (package, folder) of every <export><gazebo_ros gazebo_model_path="..."/> on ROS_PACKAGE_PATH,
+// and GAZEBO_MODEL_PATH extended by them (as gazebo_ros's paths plug-in).
+std::vector<std::pair<std::string, std::string>> exported_model_paths();
+void add_exported_model_paths();
 
 class SimNode : public NodeContext {
  public:
@@ -57,22 +77,42 @@ class SimNode : public NodeContext {
 
   // services.cpp
   void advertise_services();
-  bool spawn(car::SpawnModel::Request& req, car::SpawnModel::Response& res);
-  bool remove(car::DeleteModel::Request& req, car::DeleteModel::Response& res);
-  bool get_state(car::GetModelState::Request& req, car::GetModelState::Response& res);
-  bool set_state(car::SetModelState::Request& req, car::SetModelState::Response& res);
-  bool properties(car::GetWorldProperties::Request&, car::GetWorldProperties::Response& res);
+  bool spawn(gazebo_msgs::SpawnModel::Request& req, gazebo_msgs::SpawnModel::Response& res);
+  bool remove(gazebo_msgs::DeleteModel::Request& req, gazebo_msgs::DeleteModel::Response& res);
+  bool get_state(gazebo_msgs::GetModelState::Request& req, gazebo_msgs::GetModelState::Response& res);
+  bool set_state(gazebo_msgs::SetModelState::Request& req, gazebo_msgs::SetModelState::Response& res);
+  bool properties(gazebo_msgs::GetWorldProperties::Request&, gazebo_msgs::GetWorldProperties::Response& res);
   bool reset_simulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool reset_world(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool pause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool unpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  // gazebo_ros API (docs/COMPAT.md)
+  bool get_link_state(gazebo_msgs::GetLinkState::Request& req, gazebo_msgs::GetLinkState::Response& res);
+  bool set_link_state(gazebo_msgs::SetLinkState::Request& req, gazebo_msgs::SetLinkState::Response& res);
+  bool link_properties(gazebo_msgs::GetLinkProperties::Request& req, gazebo_msgs::GetLinkProperties::Response& res);
+  bool model_properties(gazebo_msgs::GetModelProperties::Request& req, gazebo_msgs::GetModelProperties::Response& res);
+  bool joint_properties(gazebo_msgs::GetJointProperties::Request& req, gazebo_msgs::GetJointProperties::Response& res);
+  bool set_configuration(gazebo_msgs::SetModelConfiguration::Request& req,
+                         gazebo_msgs::SetModelConfiguration::Response& res);
+  bool apply_wrench(gazebo_msgs::ApplyBodyWrench::Request& req, gazebo_msgs::ApplyBodyWrench::Response& res);
+  bool apply_effort(gazebo_msgs::ApplyJointEffort::Request& req, gazebo_msgs::ApplyJointEffort::Response& res);
+  bool clear_wrenches(gazebo_msgs::BodyRequest::Request& req, gazebo_msgs::BodyRequest::Response&);
+  bool clear_efforts(gazebo_msgs::JointRequest::Request& req, gazebo_msgs::JointRequest::Response&);
+  bool get_physics(gazebo_msgs::GetPhysicsProperties::Request&, gazebo_msgs::GetPhysicsProperties::Response& res);
+  bool set_physics(gazebo_msgs::SetPhysicsProperties::Request& req, gazebo_msgs::SetPhysicsProperties::Response& res);
+  // A named entity's world-frame state: "" / world / map / "/map" -> nullopt with *world = true; a model,
+  // "MODEL::LINK" or a plain link name -> its state; none -> nullopt with *world = false.
+  std::optional<car_sim::ModelState> entity_state(const std::string& name, bool* world) const;
+  void publish_link_states();
 
   ros::NodeHandle nh_, pnh_, gz_;
   std::unique_ptr<car_sim::World> world_;
   double rtf_ = 1.0, clock_rate_ = 100.0, joint_state_rate_ = 50.0, model_states_rate_ = 100.0;
   int solver_iterations_ = 10;
   bool paused_ = false;
-  ros::Publisher clock_pub_, model_states_pub_;
+  ros::Publisher clock_pub_, model_states_pub_, link_states_pub_;
+  ros::Subscriber set_model_state_sub_, set_link_state_sub_;  // the /gazebo/set_*_state topics
+  bool repace_ = false;  // the real-time factor changed: the pacing restarts from now
   std::vector<ros::ServiceServer> services_;
   std::map<std::string, RobotIO> io_;
   // (robot, plug-in) -> its adapter, for routing outputs

@@ -8,9 +8,11 @@
 #include <map>
 #include <stdexcept>
 
+#include "bodies.hpp"
 #include "car_sim/mesh.hpp"
 #include "guard.hpp"
 #include "physics.hpp"
+#include "services.hpp"
 
 namespace car_sim {
 
@@ -162,6 +164,7 @@ struct World::Impl : WorldAccess {
     for (auto& r : robots) r->body = nullptr;
     phys.reset();
     phys = std::make_unique<physics::Physics>(desc, physics_options(), removed);
+    apply_settings();
     for (auto& r : robots) {
       r->body = &phys->add_robot(r->info.model, r->info.name, r->info.spawn_pose, r->driven);
       for (const auto& [joint, effort] : r->motor_claims) r->body->add_motor(joint, effort);
@@ -173,6 +176,28 @@ struct World::Impl : WorldAccess {
         if (i.active) i.plugin->set_active(true);
       }
     }
+  }
+
+  // gazebo_ros API: wrench and effort jobs on ticks [first, last] (last < 0: until cleared), and the physics
+  // settings changed at run time (kept over a reset's rebuild)
+  struct WrenchJob {
+    LinkRef link;
+    Eigen::Vector3d force, torque;
+    int64_t first, last;
+  };
+  struct EffortJob {
+    std::string robot, joint;
+    double effort;
+    int64_t first, last;
+  };
+  std::vector<WrenchJob> wrenches;
+  std::vector<EffortJob> efforts;
+  int solver_iterations = -1;  // -1: the options' value
+
+  void apply_jobs(uint64_t tick);
+  void apply_settings() {
+    physics::set_gravity(*phys, env.gravity);
+    if (solver_iterations > 0) physics::set_solver_iterations(*phys, solver_iterations);
   }
 
   const WorldDescription& desc;
@@ -225,6 +250,10 @@ void World::attach_plugin(const std::string& robot, const PluginSpec& spec) {
 
 void World::remove(const std::string& name) {
   auto& robots = impl_->robots;
+  auto& w = impl_->wrenches;
+  w.erase(std::remove_if(w.begin(), w.end(), [&](const Impl::WrenchJob& j) { return j.link.model == name; }), w.end());
+  auto& e = impl_->efforts;
+  e.erase(std::remove_if(e.begin(), e.end(), [&](const Impl::EffortJob& j) { return j.robot == name; }), e.end());
   for (auto it = robots.begin(); it != robots.end(); ++it) {
     if ((*it)->info.name != name) continue;
     impl_->phys->remove_robot(name);
@@ -247,6 +276,7 @@ void World::step(uint64_t n) {
     for (auto& r : impl_->robots) r->applied.clear();
     for (auto& r : impl_->robots)
       for (auto& i : r->plugins) i.plugin->pre_physics(ctx, *r);
+    impl_->apply_jobs(tick_);
     try {
       impl_->phys->step(dt);
     } catch (const physics::NonFiniteState& e) {
@@ -275,8 +305,10 @@ void World::step(uint64_t n) {
 }
 
 void World::reset() {
-  // time first: the plug-ins' schedules restart from it
+  // time first: the plug-ins' schedules restart from it; wrench and effort jobs end
   tick_ = 0;
+  impl_->wrenches.clear();
+  impl_->efforts.clear();
   reset_poses();
 }
 
@@ -403,5 +435,298 @@ void World::set_cmd_vel(const std::string& robot, const Twist& cmd) {
 }
 
 std::vector<Contact> World::contacts() const { return impl_->contacts(); }
+
+// ---- gazebo_ros API -----------------------------------------------------------------------------------------
+
+namespace {
+
+// Splits Gazebo's scoped name "MODEL::NAME"; model "" when the name is plain.
+std::pair<std::string, std::string> scoped(const std::string& name) {
+  const auto at = name.rfind("::");
+  if (at == std::string::npos) return {"", name};
+  return {name.substr(0, at), name.substr(at + 2)};
+}
+
+bool finite(const ModelState& s) {
+  return s.pose.matrix().allFinite() && s.linear.allFinite() && s.angular.allFinite();
+}
+
+int64_t first_tick(double start, double dt, uint64_t now) {
+  const double t = std::ceil(start / dt - 1e-9);
+  return std::max<int64_t>(static_cast<int64_t>(now), static_cast<int64_t>(std::max(t, 0.0)));
+}
+
+int64_t last_tick(double start, double duration, double dt, uint64_t now) {
+  if (duration < 0.0) return -1;
+  const double from = std::max(start, static_cast<double>(now) * dt);
+  return static_cast<int64_t>(std::floor((from + duration) / dt + 1e-9));
+}
+
+}  // namespace
+
+void World::Impl::apply_jobs(uint64_t tick) {
+  const int64_t k = static_cast<int64_t>(tick);
+  for (auto it = wrenches.begin(); it != wrenches.end();) {
+    if (it->last >= 0 && k > it->last) {
+      it = wrenches.erase(it);
+      continue;
+    }
+    if (k >= it->first) {
+      if (RobotRt* r = find(it->link.model)) {
+        physics::add_link_wrench(*r->body, it->link.link, it->force, it->torque);
+      } else if (const WorldModelDesc* m = desc.find_model(it->link.model)) {
+        for (size_t i = 0; i < m->links.size(); ++i)
+          if (m->links[i].name == it->link.link)
+            if (btRigidBody* b = phys->world_model_body(m->name, i)) physics::add_body_wrench(*b, it->force, it->torque);
+      }
+    }
+    ++it;
+  }
+  for (auto it = efforts.begin(); it != efforts.end();) {
+    if (it->last >= 0 && k > it->last) {
+      it = efforts.erase(it);
+      continue;
+    }
+    if (k >= it->first)
+      if (RobotRt* r = find(it->robot)) physics::add_joint_effort(*r->body, r->body->joint(it->joint), it->effort);
+    ++it;
+  }
+}
+
+LinkRef World::find_link(const std::string& name) const {
+  const auto [model, link] = scoped(name);
+  for (const auto& m : model_names()) {
+    if (!model.empty() && m != model) continue;
+    if (const auto* r = impl_->find(m)) {
+      if (r->body->has_link(link)) return {m, link, true};
+    } else if (const WorldModelDesc* d = desc_.find_model(m)) {
+      for (const auto& l : d->links)
+        if (l.name == link) return {m, link, false};
+    }
+  }
+  if (!model.empty() && !has_model(model)) throw std::invalid_argument("no model named '" + model + "'");
+  if (!model.empty()) throw std::invalid_argument("model '" + model + "' has no link '" + link + "'");
+  throw std::invalid_argument("no model has a link named '" + link + "'");
+}
+
+namespace {
+
+const WorldLink& world_link(const WorldModelDesc& m, const std::string& link) {
+  for (const auto& l : m.links)
+    if (l.name == link) return l;
+  throw std::invalid_argument("model '" + m.name + "' has no link '" + link + "'");
+}
+
+}  // namespace
+
+ModelState World::link_state(const LinkRef& link) const {
+  if (const auto* r = impl_->find(link.model)) return r->body->link_state(link.link);
+  const WorldModelDesc* m = desc_.find_model(link.model);
+  if (!m || !has_model(link.model)) throw std::invalid_argument("no model named '" + link.model + "'");
+  // a world model's links move with the model frame
+  const ModelState ms = model_state(link.model);
+  ModelState s = ms;
+  s.pose = ms.pose * world_link(*m, link.link).pose;
+  s.linear = ms.linear + ms.angular.cross(s.pose.translation() - ms.pose.translation());
+  return s;
+}
+
+void World::set_link_state(const LinkRef& link, const ModelState& target) {
+  if (!finite(target)) throw std::invalid_argument("the link state must be finite");
+  // link frame in the model frame, now: the model goes where the link lands
+  const ModelState model = model_state(link.model);
+  const ModelState now = link_state(link);
+  const Eigen::Isometry3d link_in_model = model.pose.inverse() * now.pose;
+  ModelState s;
+  s.pose = target.pose * link_in_model.inverse();
+  s.angular = target.angular;
+  s.linear = target.linear + target.angular.cross(s.pose.translation() - target.pose.translation());
+  set_model_state(link.model, s);
+}
+
+LinkProperties World::link_properties(const LinkRef& link) const {
+  LinkProperties p;
+  if (const auto* r = impl_->find(link.model)) {
+    // a body's top link carries the merged mass of the links fixed to it, as Gazebo's URDF import lumps them
+    const detail::BodyTree tree = detail::build_bodies(r->info.model);
+    for (const auto& b : tree.bodies)
+      if (b.top == link.link) {
+        p.mass = b.mass;
+        p.com = b.com;
+        p.inertia = b.inertia;
+        return p;
+      }
+    for (const auto& l : r->info.model.links)
+      if (l.name == link.link && l.inertial) {
+        p.mass = l.inertial->mass;
+        p.com = l.inertial->origin.translation();
+        p.inertia = l.inertial->origin.linear() * l.inertial->inertia * l.inertial->origin.linear().transpose();
+      }
+    return p;
+  }
+  const WorldModelDesc* m = desc_.find_model(link.model);
+  if (!m) throw std::invalid_argument("no model named '" + link.model + "'");
+  const WorldLink& l = world_link(*m, link.link);
+  if (l.inertial) {
+    p.mass = l.inertial->mass;
+    p.com = l.inertial->origin.translation();
+    p.inertia = l.inertial->origin.linear() * l.inertial->inertia * l.inertial->origin.linear().transpose();
+  }
+  return p;
+}
+
+ModelProperties World::model_properties(const std::string& model) const {
+  if (!has_model(model)) throw std::invalid_argument("no model named '" + model + "'");
+  ModelProperties p;
+  if (const auto* r = impl_->find(model)) {
+    const detail::BodyTree tree = detail::build_bodies(r->info.model);
+    for (const auto& b : tree.bodies) p.bodies.push_back(b.top);
+    // Gazebo's URDF naming: LINK_collision, LINK_collision_1, ...; a link merged into its body's top link:
+    // TOP_fixed_joint_lump__LINK_collision
+    for (const auto& l : r->info.model.links) {
+      const auto it = tree.body_of_link.find(l.name);
+      const std::string& top = it == tree.body_of_link.end() ? l.name : tree.bodies[it->second].top;
+      const std::string base = top == l.name ? l.name : top + "_fixed_joint_lump__" + l.name;
+      for (size_t i = 0; i < l.collisions.size(); ++i)
+        p.geoms.push_back(base + "_collision" + (i ? "_" + std::to_string(i) : std::string()));
+    }
+    for (const auto& j : r->info.model.joints)
+      if (j.type != JointType::Fixed) p.joints.push_back(j.name);
+    return p;
+  }
+  const WorldModelDesc* m = desc_.find_model(model);
+  p.is_static = m->is_static;
+  for (const auto& l : m->links) {
+    p.bodies.push_back(l.name);
+    for (const auto& c : l.collisions) p.geoms.push_back(c.name);
+  }
+  return p;
+}
+
+namespace {
+
+// (robot, joint) of a moving joint by scoped or plain name.
+template <class Robots>
+std::pair<const RobotInfo*, const Joint*> find_joint(const Robots& robots, const std::string& name) {
+  const auto [model, joint] = scoped(name);
+  for (const auto& r : robots) {
+    if (!model.empty() && r->info.name != model) continue;
+    for (const auto& j : r->info.model.joints)
+      if (j.name == joint && j.type != JointType::Fixed) return {&r->info, &j};
+  }
+  throw std::invalid_argument("no robot has a moving joint named '" + name + "'");
+}
+
+}  // namespace
+
+JointProperties World::joint_properties(const std::string& name) const {
+  const auto [info, joint] = find_joint(impl_->robots, name);
+  const auto* r = impl_->find(info->name);
+  const int j = r->body->joint(joint->name);
+  JointProperties p;
+  p.model = info->name;
+  p.type = joint->type;
+  p.position = r->body->joint_position(j);
+  p.velocity = r->body->joint_velocity(j);
+  p.damping = joint->damping;
+  return p;
+}
+
+void World::set_joint_positions(const std::string& model, const std::vector<std::string>& joints,
+                                const std::vector<double>& positions) {
+  if (joints.size() != positions.size())
+    throw std::invalid_argument("joint name and position list have different lengths");
+  auto* r = impl_->find(model);
+  if (!r) {
+    if (has_model(model)) throw std::invalid_argument("model '" + model + "' has no joints");
+    throw std::invalid_argument("no model named '" + model + "'");
+  }
+  std::map<int, double> set;
+  for (size_t i = 0; i < joints.size(); ++i) {
+    const int j = r->body->joint(joints[i]);
+    if (j < 0) throw std::invalid_argument("model '" + model + "' has no moving joint '" + joints[i] + "'");
+    if (!std::isfinite(positions[i]))
+      throw std::invalid_argument("joint '" + joints[i] + "': position must be finite");
+    set[j] = positions[i];
+  }
+  physics::set_joint_positions(*r->body, set);
+  impl_->phys->invalidate_rays();
+}
+
+Eigen::Vector3d World::body_com(const LinkRef& link) const {
+  if (const auto* r = impl_->find(link.model)) return physics::body_com(*r->body, link.link);
+  // a world model link: its inertial origin
+  const WorldModelDesc* m = desc_.find_model(link.model);
+  if (!m) throw std::invalid_argument("no model named '" + link.model + "'");
+  const WorldLink& l = world_link(*m, link.link);
+  const Eigen::Isometry3d pose = link_state(link).pose;
+  return l.inertial ? Eigen::Vector3d(pose * l.inertial->origin.translation()) : pose.translation();
+}
+
+void World::apply_wrench(const LinkRef& link, const Eigen::Vector3d& force, const Eigen::Vector3d& torque,
+                         double start, double duration) {
+  if (!force.allFinite() || !torque.allFinite() || !std::isfinite(start) || !std::isfinite(duration))
+    throw std::invalid_argument("the wrench, start time and duration must be finite");
+  if (!impl_->find(link.model)) {
+    const WorldModelDesc* m = desc_.find_model(link.model);
+    if (!m || !has_model(link.model)) throw std::invalid_argument("no model named '" + link.model + "'");
+    if (m->is_static) throw std::invalid_argument("model '" + link.model + "' is static");
+    world_link(*m, link.link);
+  }
+  impl_->wrenches.push_back({link, force, torque, first_tick(start, dt(), tick_),
+                             last_tick(start, duration, dt(), tick_)});
+}
+
+void World::apply_joint_effort(const std::string& joint, double effort, double start, double duration) {
+  if (!std::isfinite(effort) || !std::isfinite(start) || !std::isfinite(duration))
+    throw std::invalid_argument("the effort, start time and duration must be finite");
+  const auto [info, j] = find_joint(impl_->robots, joint);
+  impl_->efforts.push_back({info->name, j->name, effort, first_tick(start, dt(), tick_),
+                            last_tick(start, duration, dt(), tick_)});
+}
+
+int World::clear_wrenches(const std::string& link) {
+  const auto scoped_name = scoped(link);
+  const std::string &model = scoped_name.first, &name = scoped_name.second;
+  auto& w = impl_->wrenches;
+  const size_t before = w.size();
+  w.erase(std::remove_if(w.begin(), w.end(),
+                         [&](const Impl::WrenchJob& j) {
+                           return j.link.link == name && (model.empty() || j.link.model == model);
+                         }),
+          w.end());
+  return static_cast<int>(before - w.size());
+}
+
+int World::clear_joint_efforts(const std::string& joint) {
+  const auto scoped_name = scoped(joint);
+  const std::string &model = scoped_name.first, &name = scoped_name.second;
+  auto& e = impl_->efforts;
+  const size_t before = e.size();
+  e.erase(std::remove_if(e.begin(), e.end(),
+                         [&](const Impl::EffortJob& j) {
+                           return j.joint == name && (model.empty() || j.robot == model);
+                         }),
+          e.end());
+  return static_cast<int>(before - e.size());
+}
+
+Eigen::Vector3d World::gravity() const { return impl_->env.gravity; }
+
+void World::set_gravity(const Eigen::Vector3d& g) {
+  if (!g.allFinite()) throw std::invalid_argument("gravity must be finite");
+  impl_->env.gravity = g;
+  physics::set_gravity(*impl_->phys, g);
+}
+
+int World::solver_iterations() const {
+  return impl_->solver_iterations > 0 ? impl_->solver_iterations : options_.solver_iterations;
+}
+
+void World::set_solver_iterations(int n) {
+  if (n < 1) throw std::invalid_argument("solver iterations must be at least 1");
+  impl_->solver_iterations = n;
+  physics::set_solver_iterations(*impl_->phys, n);
+}
 
 }  // namespace car_sim

@@ -5,7 +5,7 @@ import unittest
 
 import rospy
 import rostest
-from car.srv import GetModelState
+from gazebo_msgs.srv import GetModelState
 
 
 class DemoLaunchTest(unittest.TestCase):

@@ -8,8 +8,8 @@ import rosgraph
 import rospy
 import rostest
 import tf2_ros
-from car.msg import ModelState
-from car.srv import GetModelState, SetModelState
+from gazebo_msgs.msg import ModelState
+from gazebo_msgs.srv import GetModelState, SetModelState
 from rosgraph_msgs.msg import Log
 
 import simtest

@@ -7,8 +7,8 @@ import unittest
 
 import rospy
 import rostest
-from car.msg import ContactsState
-from car.srv import GetModelState
+from gazebo_msgs.msg import ContactsState
+from gazebo_msgs.srv import GetModelState
 from geometry_msgs.msg import Twist, Wrench
 from nav_msgs.msg import Odometry
 

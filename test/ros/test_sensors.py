@@ -10,8 +10,8 @@ import rospy
 import rostest
 import tf2_ros
 from car import _core
-from car.msg import ModelState
-from car.srv import SetModelState
+from gazebo_msgs.msg import ModelState
+from gazebo_msgs.srv import SetModelState
 from sensor_msgs.msg import CameraInfo, Image, LaserScan, PointCloud2
 
 import simtest

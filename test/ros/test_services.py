@@ -6,8 +6,8 @@ import unittest
 
 import rospy
 import rostest
-from car.msg import ModelState, ModelStates
-from car.srv import DeleteModel, GetModelState, GetWorldProperties, SetModelState, SpawnModel
+from gazebo_msgs.msg import ModelState, ModelStates
+from gazebo_msgs.srv import DeleteModel, GetModelState, GetWorldProperties, SetModelState, SpawnModel
 from geometry_msgs.msg import Pose
 
 import simtest
@@ -82,7 +82,7 @@ class ServicesTest(unittest.TestCase):
     def test_get_model_state_of_an_unknown_model_fails(self):
         res = self.get('nothing', '')
         self.assertFalse(res.success)
-        self.assertIn("no model named 'nothing'", res.status_message)
+        self.assertIn('model [nothing] does not exist', res.status_message)
 
     def test_set_model_state_moves_a_box(self):
         state = ModelState(model_name='unit_box', pose=pose(0.0, 2.0))

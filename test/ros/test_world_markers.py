@@ -6,8 +6,8 @@ import unittest
 
 import rospy
 import rostest
-from car.msg import ModelState
-from car.srv import SetModelState
+from gazebo_msgs.msg import ModelState
+from gazebo_msgs.srv import SetModelState
 from visualization_msgs.msg import MarkerArray
 
 from simtest import call

@@ -6,7 +6,7 @@ import unittest
 
 import rospy
 import rostest
-from car.srv import GetWorldProperties
+from gazebo_msgs.srv import GetWorldProperties
 
 from car import _core
 from simtest import Recorder, call

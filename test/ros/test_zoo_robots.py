@@ -10,7 +10,7 @@ import unittest
 import rosgraph
 import rospy
 import rostest
-from car.srv import GetModelState
+from gazebo_msgs.srv import GetModelState
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import Image

@@ -1,6 +1,6 @@
 // libgazebo_ros_bumper.so on ROS: ContactsState (field-compatible with gazebo_msgs) on bumperTopicName under
 // robotNamespace, header frame frameName, while subscribed.
-#include <car/ContactsState.h>
+#include <gazebo_msgs/ContactsState.h>
 
 #include <sstream>
 
@@ -13,8 +13,8 @@ namespace car_ros {
 namespace {
 
 // The message types, in one place (gazebo_msgs drop-in: change these two lines).
-using ContactsStateMsg = car::ContactsState;
-using ContactStateMsg = car::ContactState;
+using ContactsStateMsg = gazebo_msgs::ContactsState;
+using ContactStateMsg = gazebo_msgs::ContactState;
 
 geometry_msgs::Vector3 vec(const Eigen::Vector3d& v) {
   geometry_msgs::Vector3 m;
