@@ -583,12 +583,17 @@ ModelProperties World::model_properties(const std::string& model) const {
     for (const auto& b : tree.bodies) p.bodies.push_back(b.top);
     // Gazebo's URDF naming: LINK_collision, LINK_collision_1, ...; a link merged into its body's top link:
     // TOP_fixed_joint_lump__LINK_collision
+    // (a collision the model's lumping moved up names the link it was written on: Shape::lumped_from)
     for (const auto& l : r->info.model.links) {
       const auto it = tree.body_of_link.find(l.name);
       const std::string& top = it == tree.body_of_link.end() ? l.name : tree.bodies[it->second].top;
-      const std::string base = top == l.name ? l.name : top + "_fixed_joint_lump__" + l.name;
-      for (size_t i = 0; i < l.collisions.size(); ++i)
+      std::map<std::string, int> count;  // collisions so far per link written on
+      for (const auto& c : l.collisions) {
+        const std::string& from = c.lumped_from.empty() ? l.name : c.lumped_from;
+        const std::string base = top == from ? from : top + "_fixed_joint_lump__" + from;
+        const int i = count[from]++;
         p.geoms.push_back(base + "_collision" + (i ? "_" + std::to_string(i) : std::string()));
+      }
     }
     for (const auto& j : r->info.model.joints)
       if (j.type != JointType::Fixed) p.joints.push_back(j.name);

@@ -52,9 +52,18 @@ TEST(GazeboValues, AttributeWinsOverText) {
   EXPECT_EQ(ext(with_block("<mu1 value='0.3'>0.9</mu1>")).mu1, std::optional<double>(0.3));
 }
 
-TEST(GazeboValues, OtherKeysKeepTheAttributeValue) {
+TEST(GazeboValues, MaxVelAttribute) {
   const RobotModel m = with_block("<maxVel value='0.01'/>");
-  EXPECT_EQ(*find_param(ext(m).other, "maxVel"), "0.01");
+  ASSERT_TRUE(ext(m).max_vel.has_value());
+  EXPECT_DOUBLE_EQ(*ext(m).max_vel, 0.01);
+}
+
+TEST(GazeboValues, OtherKeysKeepTheAttributeValue) {
+  // a key car does not model is kept as written (the model check lists it)
+  const RobotModel m = with_block("<provideFeedback value='true'/>");
+  const std::string* v = find_param(ext(m).other, "provideFeedback");
+  ASSERT_NE(v, nullptr);
+  EXPECT_EQ(*v, "true");
 }
 
 TEST(GazeboValues, BadAttributeValueNamesFileLineAndElement) {
