@@ -628,6 +628,21 @@ PYBIND11_MODULE(_core, m) {
       },
       "Every plug-in kind of the registry: name, Gazebo file names, sensor types.");
   m.def(
+      "link_colours",
+      [](const std::string& xml, const std::string& base_dir) {
+        RobotModel model = load_urdf_string(xml);
+        load_meshes(&model, base_dir);
+        py::dict out;
+        for (const Link& l : model.links) {
+          const Eigen::Vector4d c = link_colour(l);
+          out[py::str(l.name)] = py::make_tuple(c[0], c[1], c[2], c[3]);
+        }
+        return out;
+      },
+      py::arg("xml"), py::arg("base_dir") = "",
+      "The colour rule for each link of a URDF (its <gazebo><material>, else its URDF colour, else a visual mesh's\n"
+      "own colour, else grey): {link: (r, g, b, a)}. Relative mesh URIs start at base_dir.");
+  m.def(
       "step_worlds",
       [](const std::vector<World*>& worlds, int n) {
         // one call for a whole vector of worlds (car.gym's vector env): no Python between them, the GIL released
