@@ -63,6 +63,7 @@ PY_PYPI = {
     'pandas': 'pandas',
     'gymnasium': 'gymnasium',
     'viser': 'viser',
+    'trimesh': 'trimesh',
     'psutil': 'psutil',
 }
 

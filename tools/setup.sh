@@ -20,6 +20,7 @@ DEB_PACKAGES=(
   libtrajectory-msgs-dev python3-trajectory-msgs python3-genmsg python3-rosservice
   ros-robot-state-publisher joint-state-publisher rviz rosbash
   googletest python3-pytest
+  chromium chromium-driver python3-selenium python3-pil
 )
 
 missing=()

@@ -26,6 +26,7 @@ from car import materials
 from car.world_geometry import transform
 
 PLANE_SIZE = 40.0  # [m] planes are drawn as this square, 1 mm thick, top face on the plane
+SCAN_COLOUR = (255, 0, 255)  # lidar points: magenta, a colour no material of the seed world or car has
 
 
 def _rgb(rgba):
@@ -220,7 +221,7 @@ class WebScene:
     def set_scan(self, robot, points):
         """Lidar hits (N, 3) [m] in the fixed frame."""
         pts = np.asarray(points, dtype=np.float32).reshape(-1, 3)
-        self.scene.add_point_cloud('/scans/%s' % robot, pts, (255, 0, 0), point_size=0.04, point_shape='circle')
+        self.scene.add_point_cloud('/scans/%s' % robot, pts, SCAN_COLOUR, point_size=0.04, point_shape='circle')
 
     def set_cloud(self, robot, points, colours=None):
         """A depth cloud (N, 3) [m] in the fixed frame, thinned to the budget; colours (N, 3) uint8 or one."""
@@ -232,10 +233,11 @@ class WebScene:
         col = col if isinstance(col, tuple) else col[idx]
         self.scene.add_point_cloud('/clouds/%s' % robot, pts[idx], col, point_size=0.015)
 
-    def look_from(self, position, look_at, fov_deg=None):
-        """The camera every new browser starts with."""
+    def look_from(self, position, look_at, fov_deg=None, up=(0.0, 0.0, 1.0)):
+        """The camera every new browser starts with (fixed frame [m]; up: the image's up direction; looking
+        straight down, give a horizontal one, e.g. (0, 1, 0) puts +y up and +x right)."""
         cam = self.server.initial_camera
-        cam.position, cam.look_at, cam.up = tuple(position), tuple(look_at), (0.0, 0.0, 1.0)
+        cam.position, cam.look_at, cam.up = tuple(position), tuple(look_at), tuple(up)
         if fov_deg:
             cam.fov = math.radians(fov_deg)
 

@@ -3,6 +3,7 @@
   rosrun car web_view [_host:=127.0.0.1] [_port:=8080] [_world:=FILE] [_fixed_frame:=odom] [_cloud_budget:=20000]
                       [_robots:=NAME[,NAME...]] [_scan_topic:=/scan] [_cloud_topic:=/camera/depth/points]
                       [_image_topic:=/camera/rgb/image_raw] [_cmd_vel:=cmd_vel] [_rate:=10]
+                      [_camera:="PX PY PZ LX LY LZ [FOV_DEG [UX UY UZ]]"]
 
 Reads robot_description (one robot, named by ~robots, default the first model /gazebo/model_states lists that is
 not in the world file), poses every link from TF in the fixed frame, the world's models from the SDF file (moving
@@ -10,6 +11,8 @@ ones follow /gazebo/model_states), /scan as points, the depth cloud (thinned to 
 image, /clock for sim time and the real-time factor; the drive panel publishes geometry_msgs/Twist on cmd_vel at
 ~rate while a command is live and calls /gazebo/pause_physics, /unpause_physics and /reset_world. It runs in its
 own process and drops frames (queue size 1, newest wins) so it never slows the simulation; browsers may come and go.
+~camera is the view every new browser starts with (position and look-at point in the fixed frame [m], vertical field
+of view [deg], image-up direction). The URL is printed and set as the parameter ~url.
 """
 from __future__ import annotations
 
@@ -75,6 +78,13 @@ def main(argv=None) -> int:
     rate = float(rospy.get_param('~rate', 10.0))
     web = WebScene(host=host, port=port, cloud_budget=int(rospy.get_param('~cloud_budget', 20000)),
                    hold=float(rospy.get_param('~hold', 1.0)))
+    cam = [float(v) for v in str(rospy.get_param('~camera', '-4 -4 5 0 0 0')).split()]
+    if len(cam) not in (6, 7, 10):
+        rospy.logfatal('web_view: ~camera: want 6, 7 or 10 numbers (position, look-at [, fov [, up]]), got %r',
+                       rospy.get_param('~camera'))
+        return 2
+    web.look_from(cam[0:3], cam[3:6], cam[6] if len(cam) > 6 else None,
+                  tuple(cam[7:10]) if len(cam) == 10 else (0.0, 0.0, 1.0))
     world_models = set()
     if world_file:
         desc = _core.load_world_file(world_file)
@@ -82,6 +92,7 @@ def main(argv=None) -> int:
         world_models = {m['name'] for m in desc['models']}
     rospy.loginfo('car web view: %s (fixed frame %s%s)', web.url, fixed, ', world ' + world_file if world_file else '')
     print('car web view: %s' % web.url, flush=True)
+    rospy.set_param('~url', web.url)
 
     buf = tf2_ros.Buffer(cache_time=rospy.Duration(10))
     tf2_ros.TransformListener(buf)
@@ -101,10 +112,7 @@ def main(argv=None) -> int:
     rospy.Subscriber(rospy.get_param('~image_topic', '/camera/rgb/image_raw'), Image, keep('image'), queue_size=1,
                      buff_size=2 ** 24)
     rospy.Subscriber('/clock', Clock, keep('clock'), queue_size=1)
-    try:
-        from gazebo_msgs.msg import ModelStates
-    except ImportError:
-        from car.msg import ModelStates
+    from gazebo_msgs.msg import ModelStates
     rospy.Subscriber('/gazebo/model_states', ModelStates, keep('states'), queue_size=1)
 
     def service(name):
