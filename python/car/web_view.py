@@ -314,3 +314,94 @@ def view(world, world_file=None, robots=None, host='127.0.0.1', port=8080, **kw)
         v.add_robot(name, text)
     print('car web view: %s' % v.web.url)
     return v
+
+
+def _pose_matrix(p):
+    """4x4 from a core pose dict {'xyz', 'rpy'} (URDF's fixed-axis roll, pitch, yaw)."""
+    r, pch, y = p['rpy']
+    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(pch), math.sin(pch), math.cos(y), math.sin(y)
+    T = np.eye(4)
+    T[:3, :3] = [[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                 [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                 [-sp, cp * sr, cp * cr]]
+    T[:3, 3] = p['xyz']
+    return T
+
+
+def links_at_zero(model):
+    """Each link's pose in the root link's frame with every joint at zero: {link: 4x4}."""
+    out = {model['links'][0]['name']: np.eye(4)} if model['links'] else {}
+    joints = list(model['joints'])
+    while joints:
+        rest = [j for j in joints if j['parent'] not in out]
+        for j in joints:
+            if j['parent'] in out:
+                out[j['child']] = out[j['parent']] @ _pose_matrix(j['origin'])
+        if len(rest) == len(joints):
+            break
+        joints = rest
+    return out
+
+
+class Replay:
+    """car batch runs replayed in a WebScene from OUTDIR/trajectories.parquet: the scenario's world, every run's
+    trail, and each robot drawn rigidly at its recorded base pose (x, y, yaw; joints at zero; z as spawned)."""
+
+    def __init__(self, outdir, scenario_file, runs=None, **kw):
+        import pyarrow.parquet as pq
+        from car import _core, scenario
+        from car.batch_run import _model_text
+        self.web = WebScene(**kw)
+        table = pq.read_table(os.path.join(outdir, 'trajectories.parquet')).to_pydict()
+        scenarios = scenario.load(scenario_file)
+        self.runs = sorted(set(table['run'])) if runs is None else list(runs)
+        # runs are car batch's run ids; a sweep shares the first scenario's world and robot models
+        first = scenarios[0]['scenario']
+        if first.get('world'):
+            self.web.add_world(_core.load_world_file(first['world']))
+        # one drawn robot per scenario robot (runs share the model), and every run's path as a trail
+        self.robots = {}
+        for r in first['robots']:
+            text = _model_text(r)
+            model = _core.load_urdf_string(text, r['name'])
+            self.web.add_robot(r['name'], text)
+            self.robots[r['name']] = (links_at_zero(model), r['pose']['z'])
+        self.samples = {}  # (run, robot) -> [(t, x, y, yaw)]
+        for run, robot, t, x, y, yaw in zip(table['run'], table['robot'], table['t'], table['x'], table['y'],
+                                            table['yaw']):
+            if run in self.runs:
+                self.samples.setdefault((run, robot), []).append((t, x, y, yaw))
+        for (run, robot), s in self.samples.items():
+            s.sort()
+            seg = np.array([[[a[1], a[2], 0.005], [b[1], b[2], 0.005]] for a, b in zip(s[:-1], s[1:])], np.float32)
+            if len(seg):
+                self.web.scene.add_line_segments('/replay/%s/%s' % (run, robot), seg, (230, 80, 20), thickness=0.01)
+
+    def show(self, run, t):
+        """Poses the robots of `run` at sim time t [s] (the last sample at or before t)."""
+        for robot, (links, z) in self.robots.items():
+            s = self.samples.get((run, robot))
+            if not s:
+                continue
+            i = max(0, np.searchsorted([p[0] for p in s], t, side='right') - 1)
+            _, x, y, yaw = s[i]
+            base = np.eye(4)
+            base[:3, :3] = [[math.cos(yaw), -math.sin(yaw), 0], [math.sin(yaw), math.cos(yaw), 0], [0, 0, 1]]
+            base[:3, 3] = (x, y, z)
+            for link, T in links.items():
+                self.web.set_link_pose(robot, link, base @ T)
+        self.web.set_status(t, None)
+
+    def play(self, speed=1.0, loop=False):
+        """Plays every run after the other at `speed` x real time (wall clock: this is a viewer)."""
+        while True:
+            for run in self.runs:
+                end = max(p[0] for (r, _), s in self.samples.items() if r == run for p in s)
+                t0 = time.monotonic()
+                t = 0.0
+                while t <= end:
+                    self.show(run, t)
+                    time.sleep(0.05)
+                    t = (time.monotonic() - t0) * speed
+            if not loop:
+                return

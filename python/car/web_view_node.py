@@ -60,7 +60,31 @@ def image_rgb(msg):
     return None
 
 
+def replay_main(argv) -> int:
+    """web_view --replay OUTDIR SCENARIO: car batch runs in the browser, without ROS."""
+    import argparse
+    from car.web_view import Replay
+    ap = argparse.ArgumentParser(prog='web_view --replay', description='Replays car batch runs in a browser.')
+    ap.add_argument('outdir', help='the OUTDIR of car batch (holds trajectories.parquet)')
+    ap.add_argument('scenario', help='the scenario YAML the runs came from')
+    ap.add_argument('--runs', default='', help='comma-separated run ids, as in runs.parquet (default: all)')
+    ap.add_argument('--speed', type=float, default=1.0, help='x real time')
+    ap.add_argument('--loop', action='store_true')
+    ap.add_argument('--host', default='127.0.0.1')
+    ap.add_argument('--port', type=int, default=8080)
+    a = ap.parse_args(argv)
+    runs = [r for r in a.runs.split(',') if r] or None
+    r = Replay(a.outdir, a.scenario, runs, host=a.host, port=a.port)
+    print('car web view (replay of %d runs): %s' % (len(r.runs), r.web.url), flush=True)
+    r.play(a.speed, a.loop)
+    r.web.stop()
+    return 0
+
+
 def main(argv=None) -> int:
+    argv = sys.argv[1:] if argv is None else argv
+    if argv[:1] == ['--replay']:
+        return replay_main(argv[1:])
     import rospy
     import tf2_ros
     from geometry_msgs.msg import Twist

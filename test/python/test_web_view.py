@@ -1,0 +1,75 @@
+"""car.web_view without a browser: the scene graph it builds (viser's server-side handles), the drive panel's
+dead-man window, and the replay of car batch runs. The browser itself is tested in test/ros/web_view.test."""
+import math
+import os
+import time
+
+import numpy as np
+import pytest
+
+from conftest import DATA
+from car import batch, scenario
+from car import web_view
+
+BATCH = os.path.join(DATA, 'batch')
+
+
+def test_thin_keeps_at_most_the_budget_by_a_regular_stride():
+    pts = np.arange(100000).reshape(-1, 1)
+    out = web_view.thin(pts, 20000)
+    assert len(out) == 20000          # stride ceil(100000 / 20000) = 5
+    assert out[1, 0] - out[0, 0] == 5
+
+
+def test_wxyz_of_a_quarter_turn_about_z():
+    c, s = math.cos(math.pi / 2), math.sin(math.pi / 2)
+    w, x, y, z = web_view.wxyz([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+    assert (w, x, y, z) == pytest.approx((math.sqrt(0.5), 0.0, 0.0, math.sqrt(0.5)))
+
+
+def test_links_at_zero_compose_the_joint_origins():
+    model = {'links': [{'name': 'a'}, {'name': 'b'}, {'name': 'c'}],
+             'joints': [{'parent': 'b', 'child': 'c', 'origin': {'xyz': [1, 0, 0], 'rpy': [0, 0, 0]}},
+                        {'parent': 'a', 'child': 'b', 'origin': {'xyz': [0, 0, 1], 'rpy': [0, 0, math.pi / 2]}}]}
+    T = web_view.links_at_zero(model)
+    # c sits 1 m along b's x, which a's quarter turn points along a's y: (0, 1, 1)
+    assert T['c'][:3, 3] == pytest.approx([0.0, 1.0, 1.0])
+
+
+@pytest.fixture()
+def scene():
+    s = web_view.WebScene(port=0)
+    yield s
+    s.stop()
+
+
+def test_dead_man_window_sends_the_command_then_one_stop(scene):
+    scene.add_robot('r', '<robot name="r"><link name="base"><inertial><mass value="1"/>'
+                         '<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>')
+    sent = []
+    scene.on_cmd = lambda robot, v, w: sent.append((robot, v, w))
+    scene.press(0.5, 0.0, hold=0.2)
+    assert sent == [('r', 0.5, 0.0)]
+    assert scene.commands() == [('r', 0.5, 0.0)]      # inside the window: the command again
+    time.sleep(0.25)
+    assert scene.commands() == [('r', 0.0, 0.0)]      # the window closed: one stop
+    assert scene.commands() == []                     # and then nothing
+
+
+def test_replay_poses_the_robot_at_its_recorded_base_pose(tmp_path):
+    path = os.path.join(BATCH, 'straight.yaml')
+    results = batch.run_all(scenario.load(path)[:1], str(tmp_path), serial=True, progress=False)
+    batch.write_parquet(results, str(tmp_path))
+    r = web_view.Replay(str(tmp_path), path, port=0)
+    try:
+        run = r.runs[0]
+        t, x, y, yaw = r.samples[(run, 'mycar')][-1]
+        r.show(run, t + 1.0)  # after the last sample: the last pose
+        root = next(iter(r.robots['mycar'][0]))
+        f = r.web._frames[('mycar', root)]
+        assert tuple(f.position) == pytest.approx((x, y, 0.0))
+        # the first run drives 0.5 m/s for 2 s (less the 0.07 m ramp; a turn after 1.5 s shortens x a little)
+        assert 0.85 < x < 0.94
+        assert tuple(f.wxyz) == pytest.approx((math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)), abs=1e-9)
+    finally:
+        r.web.stop()
