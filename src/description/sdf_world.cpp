@@ -11,6 +11,7 @@
 
 #include "car_sim/description.hpp"
 #include "car_sim/mesh.hpp"
+#include "package_path.hpp"
 #include "validate.hpp"
 #include "xml_util.hpp"
 
@@ -86,23 +87,8 @@ std::vector<std::string> split_path(const char* env) {
 std::string package_named(const std::string& name) {
   std::vector<std::string> roots = split_path(std::getenv("ROS_PACKAGE_PATH"));
   roots.push_back(CAR_PACKAGE_DIR);  // car itself, also where no ROS environment is set up
-  for (const auto& entry : roots) {
-    for (const std::string& cand : {entry, entry + "/" + name}) {
-      std::ifstream in(cand + "/package.xml");
-      if (!in) continue;
-      std::stringstream ss;
-      ss << in.rdbuf();
-      const std::string xml = ss.str();
-      const auto a = xml.find("<name>"), b = xml.find("</name>");
-      if (a != std::string::npos && b != std::string::npos) {
-        std::string n = xml.substr(a + 6, b - a - 6);
-        n.erase(0, n.find_first_not_of(" \t\r\n"));
-        n.erase(n.find_last_not_of(" \t\r\n") + 1);
-        if (n == name) return cand;
-      }
-    }
-  }
-  return "";
+  // rospack's crawl: nested packages (catkin_ws/src/REPO/PKG) are found too
+  return detail::find_ros_package(name, roots);
 }
 
 SurfaceFriction read_friction(const sdf::Collision& c) {

@@ -184,14 +184,38 @@ void read_joint_lumping(RobotModel* m, const tinyxml2::XMLElement* g, const std:
       if (auto v = flag_in(m, c, "gazebo[" + joint + "]/" + key); v && *v) m->preserved_fixed_joints.insert(joint);
 }
 
+// A <gazebo> block without reference: sdformat copies its elements into the <model> as written (SDF names).
+// Plug-ins; <self_collide> (the model's: links that set none take it, Gazebo's Link::Load); anything else is
+// named in a note (<static> in a warning: car keeps the model dynamic).
+void read_robot_block(RobotModel* m, const tinyxml2::XMLElement* g, std::optional<bool>* self_collide) {
+  for (auto* c = g->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    const std::string here = "gazebo/" + tag;
+    if (tag == "plugin") {
+      m->plugins.push_back(read_plugin(c));
+    } else if (tag == "self_collide") {
+      if (auto v = flag_in(m, c, here); v && !*self_collide) *self_collide = v;
+    } else if (tag == "static") {
+      if (auto v = flag_in(m, c, here); v && *v)
+        note(m, Severity::Warning, "gazebo-robot", here,
+             "<static>true</static> is not simulated by car: the model stays dynamic (fix it to the link "
+             "'world' with a fixed joint to anchor it)",
+             c->GetLineNum());
+    } else {
+      note(m, Severity::Info, "gazebo-robot", here,
+           "model-level <" + tag + "> is accepted and not simulated by car", c->GetLineNum());
+    }
+  }
+}
+
 }  // namespace
 
 void parse_gazebo_extensions(const tinyxml2::XMLElement* robot, RobotModel* m) {
+  std::optional<bool> self_collide;  // the model's <self_collide>, the first one written
   for (auto* g = robot->FirstChildElement("gazebo"); g; g = g->NextSiblingElement("gazebo")) {
     const char* ref = g->Attribute("reference");
     if (!ref || !*ref) {
-      for (auto* p = g->FirstChildElement("plugin"); p; p = p->NextSiblingElement("plugin"))
-        m->plugins.push_back(read_plugin(p));
+      read_robot_block(m, g, &self_collide);
       continue;
     }
     const std::string name = ref;
@@ -209,6 +233,10 @@ void parse_gazebo_extensions(const tinyxml2::XMLElement* robot, RobotModel* m) {
            "reference '" + name + "' names no link or joint; the block is ignored", g->GetLineNum());
     }
   }
+  // the model's <self_collide> for each link that sets no <selfCollide> of its own
+  if (self_collide)
+    for (auto& l : m->links)
+      if (!l.gazebo.self_collide) l.gazebo.self_collide = self_collide;
 }
 
 }  // namespace car_sim

@@ -66,6 +66,8 @@ inline bool parse_n(const std::string& text, int n, double* out) {
 inline void finish_model(ResolveContext& ctx, const std::string& prefix, int n) {
   for (const char* name : {"offset", "drift", "driftFrequency", "gaussianNoise", "scaleError"}) {
     const std::string k = key(prefix, name);
+    // a key not written keeps upstream's default (one number meant for every axis): nothing to report
+    if (ctx.config().param(k).from_default) continue;
     double v[3];
     const std::string& t = ctx.config().text(k);
     if (parse_n(t, n, v)) {
