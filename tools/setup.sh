@@ -20,6 +20,7 @@ DEB_PACKAGES=(
   libtrajectory-msgs-dev python3-trajectory-msgs python3-genmsg python3-rosservice
   ros-robot-state-publisher joint-state-publisher rviz rosbash
   googletest python3-pytest
+  python3-dynamic-reconfigure libdynamic-reconfigure-config-init-mutex-dev
 )
 
 missing=()
@@ -81,6 +82,10 @@ for pkg in "$ROOT"/compat/*/; do
   else
     ln -sfn "../../compat/$name" ".ws/src/$name"
   fi
+done
+# test fixtures that are packages of their own (the tutorial's urdf_rviz01, so its launch files run verbatim)
+for pkg in "$ROOT"/test/dropin/packages/*/; do
+  [ -f "$pkg/package.xml" ] && ln -sfn "../../test/dropin/packages/$(basename "$pkg")" ".ws/src/$(basename "$pkg")"
 done
 set +u
 # shellcheck disable=SC1091
