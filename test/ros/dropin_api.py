@@ -73,6 +73,14 @@ class DropinApi(unittest.TestCase):
         deadline = time.time() + 60
         while last not in actual('/gazebo') and time.time() < deadline:
             time.sleep(0.2)
+        model = rospy.get_param('~wait_model', '')
+        if model:
+            # a spawned robot (car_extras false) adds nothing to the node's lists
+            from gazebo_msgs.srv import GetWorldProperties
+            props = rospy.ServiceProxy('/gazebo/get_world_properties', GetWorldProperties)
+            while model not in props().model_names and time.time() < deadline:
+                time.sleep(0.2)
+            self.assertIn(model, props().model_names)
         time.sleep(1.0)
         got = actual('/gazebo') - {SDF}
         self.assertEqual(sorted(got - want), [], 'offered but not in the doc')
