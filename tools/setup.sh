@@ -65,9 +65,6 @@ mkdir -p .ws/src
 [ -L .ws/src/car ] && rm .ws/src/car
 mkdir -p .ws/src/car
 for entry in "$ROOT"/*; do
-  # compat/ holds packages of their own (linked beside car below): inside car, rosrun car spawn_model would find
-  # their executables of the same names too
-  [ "$(basename "$entry")" = compat ] && { rm -f .ws/src/car/compat; continue; }
   ln -sfn "../../../$(basename "$entry")" ".ws/src/car/$(basename "$entry")"
 done
 for link in .ws/src/car/*; do
