@@ -21,6 +21,7 @@ DEB_PACKAGES=(
   ros-robot-state-publisher joint-state-publisher rviz rosbash
   googletest python3-pytest
   chromium chromium-driver python3-selenium python3-pil
+  python3-dynamic-reconfigure libdynamic-reconfigure-config-init-mutex-dev
 )
 
 missing=()
@@ -82,6 +83,10 @@ for pkg in "$ROOT"/compat/*/; do
   else
     ln -sfn "../../compat/$name" ".ws/src/$name"
   fi
+done
+# test fixtures that are packages of their own (the tutorial's urdf_rviz01, so its launch files run verbatim)
+for pkg in "$ROOT"/test/dropin/packages/*/; do
+  [ -f "$pkg/package.xml" ] && ln -sfn "../../test/dropin/packages/$(basename "$pkg")" ".ws/src/$(basename "$pkg")"
 done
 set +u
 # shellcheck disable=SC1091

@@ -13,7 +13,8 @@
 
 namespace car_ros {
 
-SimNode::SimNode() : nh_(), pnh_("~"), gz_("gazebo") {}
+// gz_: gazebo_ros's api plug-in advertises in its node's private namespace; launch files name the node gazebo
+SimNode::SimNode() : nh_(), pnh_("~"), gz_("~") {}
 
 ros::Time SimNode::stamp(uint64_t tick) const { return sim_time(tick, world_->dt()); }
 
@@ -35,6 +36,14 @@ bool SimNode::init() {
     ROS_INFO("car: launch arguments without effect in car (headless, Bullet, no recording): %s", ignored.c_str());
   int seed = 0;
   pnh_.param("seed", seed, 0);
+  pnh_.param("car_extras", car_extras_, true);
+  int iters = 0;
+  pnh_.param("iters", iters, 0);
+  if (iters < 0) {
+    ROS_FATAL("car: parameter ~iters must be >= 0 (gzserver --iters), got %d", iters);
+    return false;
+  }
+  iters_ = iters;
   if (!(rtf_ >= 0.0) || !std::isfinite(rtf_)) {
     ROS_FATAL("car: parameter ~rtf must be >= 0 (0 = as fast as possible), got %g", rtf_);
     return false;
@@ -44,6 +53,7 @@ bool SimNode::init() {
   options.solver_iterations = solver_iterations_;
   options.seed = static_cast<uint64_t>(seed);
   try {
+    world_file = resolve_world_name(world_file);
     world_ = std::make_unique<car_sim::World>(
         world_file.empty() ? car_sim::empty_world() : car_sim::load_world_file(world_file), options);
   } catch (const car_sim::LoadError& e) {
@@ -53,11 +63,14 @@ bool SimNode::init() {
   nh_.setParam("/use_sim_time", true);
   log_world(world_file);
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
-  model_states_pub_ = gz_.advertise<gazebo_msgs::ModelStates>("model_states", 100);
-  if (ros_network)
+  if (ros_network) {
+    model_states_pub_ = gz_.advertise<gazebo_msgs::ModelStates>("model_states", 100);
     advertise_services();
-  else
-    ROS_INFO("car: enable_ros_network is false: no /gazebo services or set_*_state topics");
+    advertise_dropin();
+  } else {
+    ROS_INFO("car: enable_ros_network is false: only /clock (no %s/* topics or services, as gazebo_ros)",
+             gz_.getNamespace().c_str());
+  }
   publish_clock();
   return true;
 }
@@ -96,6 +109,13 @@ void SimNode::run() {
       continue;
     }
     publish_outputs();
+    publish_performance();
+    if (iters_ > 0 && --iters_ == 0) {
+      // gzserver --iters N: N steps, then the server exits
+      ROS_INFO("car: --iters reached at %.3f s of sim time: shutting down", stamp(world_->tick()).toSec());
+      ros::shutdown();
+      break;
+    }
     if (rtf_ > 0.0) {
       const double sim_elapsed = static_cast<double>(world_->tick() - tick0) * world_->dt();
       const auto due =
@@ -180,17 +200,20 @@ void SimNode::update_activity() {
 
 void SimNode::make_io(const std::string& name) {
   const car_sim::RobotInfo& info = world_->robot(name);
-  // ground truth of the root link in the world frame, as gazebo_ros users get from a p3d plug-in
-  car_sim::PluginSpec truth;
-  truth.name = "car_ground_truth";
-  truth.filename = "libgazebo_ros_p3d.so";
-  truth.params = {{"bodyName", info.model.root_link},
-                  {"topicName", "/gazebo/ground_truth/" + name},
-                  {"frameName", "world"},
-                  {"updateRate", std::to_string(model_states_rate_)}};
-  world_->attach_plugin(name, truth);
   RobotIO io;
-  io.joint_states = nh_.advertise<sensor_msgs::JointState>(topic_in(frame(info.robot_namespace), "joint_states"), 10);
+  // car-only (docs/COMPAT-dropins.md): ground truth and every joint's state, unless ~car_extras is false
+  if (car_extras_) {
+    // ground truth of the root link in the world frame, as gazebo_ros users get from a p3d plug-in
+    car_sim::PluginSpec truth;
+    truth.name = "car_ground_truth";
+    truth.filename = "libgazebo_ros_p3d.so";
+    truth.params = {{"bodyName", info.model.root_link},
+                    {"topicName", "/gazebo/ground_truth/" + name},
+                    {"frameName", "world"},
+                    {"updateRate", std::to_string(model_states_rate_)}};
+    world_->attach_plugin(name, truth);
+    io.joint_states = nh_.advertise<sensor_msgs::JointState>(topic_in(frame(info.robot_namespace), "joint_states"), 10);
+  }
   for (const auto& p : world_->plugins()) {
     if (p.robot != name) continue;
     PluginIO pio;

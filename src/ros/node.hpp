@@ -27,6 +27,7 @@
 #include <std_srvs/Empty.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <chrono>
 #include <map>
 #include <memory>
 #include <optional>
@@ -42,6 +43,9 @@ namespace car_ros {
 // and GAZEBO_MODEL_PATH extended by them (as gazebo_ros's paths plug-in).
 std::vector<std::pair<std::string, std::string>> exported_model_paths();
 void add_exported_model_paths();
+// dropin.cpp: a world name as gzserver resolves it: a path as given, else under each GAZEBO_RESOURCE_PATH entry,
+// else "worlds/empty.world" = "" (car's built-in empty world); throws car_sim::LoadError naming what was searched.
+std::string resolve_world_name(const std::string& name);
 
 class SimNode : public NodeContext {
  public:
@@ -52,7 +56,11 @@ class SimNode : public NodeContext {
   // NodeContext
   ros::NodeHandle& nh() override { return nh_; }
   car_sim::World& world() override { return *world_; }
-  tf2_ros::TransformBroadcaster& tf() override { return tf_; }
+  // /tf is advertised on the first transform a plug-in sends, as Gazebo's plug-ins do (docs/COMPAT-dropins.md)
+  tf2_ros::TransformBroadcaster& tf() override {
+    if (!tf_) tf_ = std::make_unique<tf2_ros::TransformBroadcaster>();
+    return *tf_;
+  }
   ros::Time stamp(uint64_t tick) const override;
 
  private:
@@ -104,6 +112,9 @@ class SimNode : public NodeContext {
   // "MODEL::LINK" or a plain link name -> its state; none -> nullopt with *world = false.
   std::optional<car_sim::ModelState> entity_state(const std::string& name, bool* world) const;
   void publish_link_states();
+  // dropin.cpp: the rest of gazebo_ros's API surface (docs/COMPAT-dropins.md)
+  void advertise_dropin();
+  void publish_performance();
 
   ros::NodeHandle nh_, pnh_, gz_;
   std::unique_ptr<car_sim::World> world_;
@@ -117,7 +128,16 @@ class SimNode : public NodeContext {
   std::map<std::string, RobotIO> io_;
   // (robot, plug-in) -> its adapter, for routing outputs
   std::map<std::pair<std::string, std::string>, Adapter*> route_;
-  tf2_ros::TransformBroadcaster tf_;
+  std::unique_ptr<tf2_ros::TransformBroadcaster> tf_;
+  // docs/COMPAT-dropins.md: car-only topics per robot (joint_states, /gazebo/ground_truth/<model>); stop after
+  // ~iters steps (gzserver --iters, 0 = never); dynamic_reconfigure server (type-erased) and performance metrics
+  bool car_extras_ = true;
+  int64_t iters_ = 0;
+  std::shared_ptr<void> reconfigure_;
+  bool reconfigure_ready_ = false;
+  ros::Publisher performance_pub_;
+  std::chrono::steady_clock::time_point perf_wall_ = std::chrono::steady_clock::now();
+  uint64_t perf_tick_ = 0;
 };
 
 }  // namespace car_ros
