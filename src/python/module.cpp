@@ -350,6 +350,22 @@ py::dict world_dict(const WorldDescription& d) {
     models.append(md);
   }
   out["models"] = models;
+  // world models simulated as robots (plug-ins, sensors, joints; docs/COMPAT-sdf.md 16), with their plug-ins
+  py::list robots;
+  for (const auto& r : d.robots) {
+    py::dict rd;
+    rd["name"] = r.name;
+    rd["static"] = r.robot.is_static;
+    rd["model"] = model_dict(r.robot.model);
+    try {
+      rd["config"] = config_dict(resolve_plugins(r.robot.model));
+    } catch (const LoadError& e) {
+      rd["config"] = py::none();
+      rd["config_error"] = e.what();
+    }
+    robots.append(rd);
+  }
+  out["robots"] = robots;
   py::list diags;  // what the loader found (e.g. masses outside the stated range)
   for (const auto& x : d.diagnostics) diags.append(diagnostic(x));
   out["diagnostics"] = diags;
