@@ -36,7 +36,10 @@ int line_of(const sdf::ElementPtr& e) { return e && e->LineNumber() ? *e->LineNu
   const sdf::Error& e = errors.front();
   std::string reason = e.Message();
   if (errors.size() > 1) reason += " (and " + std::to_string(errors.size() - 1) + " more)";
-  throw LoadError(e.FilePath() ? *e.FilePath() : source, e.LineNumber() ? *e.LineNumber() : 0,
+  // an error inside an included file names that file; one in the text itself names the source (sdformat calls it
+  // "data-string")
+  const bool in_file = e.FilePath() && std::ifstream(*e.FilePath()).good();
+  throw LoadError(in_file ? *e.FilePath() : source, e.LineNumber() ? *e.LineNumber() : 0,
                   e.XmlPath() ? *e.XmlPath() : "", reason);
 }
 
