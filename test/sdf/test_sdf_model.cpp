@@ -23,7 +23,7 @@ const char* kInertial =
     "<inertial><mass>2</mass><inertia><ixx>0.1</ixx><iyy>0.2</iyy><izz>0.25</izz><ixy>0</ixy><ixz>0</ixz><iyz>0</iyz>"
     "</inertia></inertial>";
 
-std::string link(const std::string& name, const std::string& inner = "") {
+std::string lnk(const std::string& name, const std::string& inner = "") {
   return "<link name='" + name + "'>" + std::string(kInertial) + inner + "</link>";
 }
 
@@ -56,7 +56,7 @@ TEST(SdfModel, LinkWithoutInertialHasOneKilogramAndUnitInertia) {
 }
 
 TEST(SdfModel, WrittenInertialIsKept) {
-  const SdfRobot r = load_sdf_model_string(sdf("<model name='m'>" + link("a") + "</model>"));
+  const SdfRobot r = load_sdf_model_string(sdf("<model name='m'>" + lnk("a") + "</model>"));
   EXPECT_DOUBLE_EQ(r.model.links[0].inertial->mass, 2.0);
   EXPECT_DOUBLE_EQ(r.model.links[0].inertial->inertia(1, 1), 0.2);
   EXPECT_DOUBLE_EQ(r.model.links[0].inertial->inertia(2, 2), 0.25);
@@ -66,7 +66,7 @@ TEST(SdfModel, WrittenInertialIsKept) {
 // 0.5 m above it. Joint origins are the child frames in the parent frames.
 TEST(SdfModel, PosesRelativeToResolveThroughFrames) {
   const SdfRobot r = load_sdf_model_string(sdf(
-      "<model name='m'>" + link("a", "<pose>0 0 1 0 0 0</pose>") +
+      "<model name='m'>" + lnk("a", "<pose>0 0 1 0 0 0</pose>") +
       "<frame name='f'><pose relative_to='a'>0 2 0 0 0 0</pose></frame>" +
       "<link name='b'><pose relative_to='a'>1 0 0 0 0 1.5707963267948966</pose></link>" +
       "<link name='c'><pose relative_to='f'>0 0 0.5 0 0 0</pose></link>" + joint("ab", "fixed", "a", "b") +
@@ -85,7 +85,7 @@ TEST(SdfModel, PosesRelativeToResolveThroughFrames) {
 // Rule 11: the spawn pose goes on top of the model's own pose: model at (1, 2, 0), spawned at (3, 0, 0) turned
 // 90 deg: root at (3, 0, 0) + R(90)(1, 2, 0) = (3 - 2, 1, 0) = (1, 1, 0).
 TEST(SdfModel, SpawnPoseComposesWithModelPose) {
-  const SdfRobot r = load_sdf_model_string(sdf("<model name='m'><pose>1 2 0 0 0 0</pose>" + link("a") + "</model>"));
+  const SdfRobot r = load_sdf_model_string(sdf("<model name='m'><pose>1 2 0 0 0 0</pose>" + lnk("a") + "</model>"));
   World w(empty_world());
   w.spawn_sdf(r, "bot", at(3, 0, kHalfPi));
   const Eigen::Vector3d p = w.model_state("bot").pose.translation();
@@ -95,7 +95,7 @@ TEST(SdfModel, SpawnPoseComposesWithModelPose) {
 
 TEST(SdfModel, JointTypesMapOntoTheCore) {
   const SdfRobot r = load_sdf_model_string(sdf(
-      "<model name='m'>" + link("a") + link("b") + link("c") + link("d") + link("e") + link("f") +
+      "<model name='m'>" + lnk("a") + lnk("b") + lnk("c") + lnk("d") + lnk("e") + lnk("f") +
       joint("rev", "revolute", "a", "b", "<axis><xyz>0 1 0</xyz><limit><lower>-0.5</lower><upper>0.7</upper>"
                                       "<effort>3</effort><velocity>4</velocity></limit><dynamics><damping>0.2"
                                       "</damping><friction>0.1</friction></dynamics></axis>") +
@@ -128,7 +128,7 @@ TEST(SdfModel, JointTypesMapOntoTheCore) {
 // model x = b's -y.
 TEST(SdfModel, AxisExpressedInModelFrameIsResolvedIntoTheChild) {
   const SdfRobot r = load_sdf_model_string(sdf(
-      "<model name='m'>" + link("a") + link("b", "<pose>0 0 0 0 0 1.5707963267948966</pose>") +
+      "<model name='m'>" + lnk("a") + lnk("b", "<pose>0 0 0 0 0 1.5707963267948966</pose>") +
       joint("j", "revolute", "a", "b", "<axis><xyz expressed_in='__model__'>1 0 0</xyz><limit><lower>-1</lower>"
                                     "<upper>1</upper></limit></axis>") + "</model>"));
   EXPECT_TRUE(r.model.find_joint("j")->axis.isApprox(Eigen::Vector3d(0, -1, 0), 1e-12));
@@ -136,7 +136,7 @@ TEST(SdfModel, AxisExpressedInModelFrameIsResolvedIntoTheChild) {
 
 TEST(SdfModel, BallJointIsAClearError) {
   try {
-    load_sdf_model_string(sdf("<model name='m'>" + link("a") + link("b") + joint("shoulder", "ball", "a", "b") +
+    load_sdf_model_string(sdf("<model name='m'>" + lnk("a") + lnk("b") + joint("shoulder", "ball", "a", "b") +
                               "</model>"), "arm.sdf");
     FAIL() << "a ball joint must be refused";
   } catch (const LoadError& e) {
@@ -149,7 +149,7 @@ TEST(SdfModel, BallJointIsAClearError) {
 
 TEST(SdfModel, UnknownJointTypeNamesFileAndReason) {
   try {
-    load_sdf_model_string(sdf("<model name='m'>" + link("a") + link("b") + joint("j", "hinge", "a", "b") +
+    load_sdf_model_string(sdf("<model name='m'>" + lnk("a") + lnk("b") + joint("j", "hinge", "a", "b") +
                               "</model>"), "bad_joint.sdf");
     FAIL() << "an unknown joint type must be refused";
   } catch (const LoadError& e) {
@@ -173,7 +173,7 @@ TEST(SdfModel, MalformedXmlNamesFileAndLine) {
 
 TEST(SdfModel, SecondFreeBodyIsRefused) {
   try {
-    load_sdf_model_string(sdf("<model name='m'>" + link("a") + link("loose") + "</model>"), "two.sdf");
+    load_sdf_model_string(sdf("<model name='m'>" + lnk("a") + lnk("loose") + "</model>"), "two.sdf");
     FAIL();
   } catch (const LoadError& e) {
     EXPECT_NE(std::string(e.what()).find("link[loose]"), std::string::npos) << e.what();
@@ -223,7 +223,7 @@ TEST(SdfModel, Sdf14DocumentLoads) {
 
 // Rule 12: a static model hangs from `world`.
 TEST(SdfModel, StaticModelIsAnchored) {
-  const SdfRobot r = load_sdf_model_string(sdf("<model name='m'><static>true</static>" + link("a") + "</model>"));
+  const SdfRobot r = load_sdf_model_string(sdf("<model name='m'><static>true</static>" + lnk("a") + "</model>"));
   EXPECT_TRUE(r.is_static);
   EXPECT_TRUE(r.model.anchored());
   EXPECT_EQ(r.model.root_link, "world");
