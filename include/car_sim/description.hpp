@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "car_sim/model.hpp"
+#include "car_sim/sdf_model.hpp"
 
 namespace car_sim {
 
@@ -46,6 +47,14 @@ struct WorldModelDesc {
   std::vector<WorldLink> links;
 };
 
+// A world model with plug-ins, sensors or joints: spawned as a robot when the World starts (docs/COMPAT-sdf.md 16).
+struct WorldRobotDesc {
+  std::string name;
+  SdfRobot robot;
+  // where to spawn it: World::spawn_sdf(robot, name, pose) puts the root link at pose * robot.root_pose
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+};
+
 struct WorldDescription {
   std::string name = "default";
   std::string source;                                    // file name or "<string>"
@@ -56,6 +65,7 @@ struct WorldDescription {
   double ambient = 0.4;                                                          // <scene><ambient> (grey level)
   Eigen::Vector3d background = Eigen::Vector3d(0.7, 0.7, 0.7);                  // <scene><background>
   std::vector<WorldModelDesc> models;
+  std::vector<WorldRobotDesc> robots;  // world models simulated as robots (plug-ins, sensors, joints)
   std::vector<Diagnostic> diagnostics;
 
   const WorldModelDesc* find_model(const std::string& name) const;

@@ -15,6 +15,7 @@
 #include "car_sim/model.hpp"
 #include "car_sim/plugin.hpp"
 #include "car_sim/plugins.hpp"
+#include "car_sim/sdf_model.hpp"
 #include "car_sim/state.hpp"
 
 namespace car_sim {
@@ -91,6 +92,10 @@ class World {
   // A non-empty robot_namespace is added to every plug-in without <robotNamespace>, as gazebo_ros does.
   void spawn(const RobotModel& model, const std::string& name, const Eigen::Isometry3d& pose,
              const std::string& robot_namespace = "");
+  // Adds an SDF robot (load_sdf_model_string) the same way: its root link at pose * robot.root_pose (the spawn pose
+  // on top of the document's model pose, as gazebo_ros's spawn_sdf_model; docs/COMPAT-sdf.md).
+  void spawn_sdf(const SdfRobot& robot, const std::string& name, const Eigen::Isometry3d& pose,
+                 const std::string& robot_namespace = "");
   // Adds a robot-level plug-in to a spawned robot (e.g. the ground-truth publisher the ROS node attaches).
   // Throws LoadError for a bad plug-in, std::invalid_argument for an unknown robot or a taken plug-in name.
   void attach_plugin(const std::string& robot, const PluginSpec& spec);

@@ -5,6 +5,8 @@
     spawn_model -urdf -file car.urdf -model mycar ...
     spawn_model -urdf -stdin -model mycar ... < car.urdf
                 [-J JOINT VALUE]... [-wait MODEL] [-package_to_model]
+    spawn_model -sdf -file model.sdf | -param P | -stdin -model NAME ...
+    spawn_model -sdf -database MODEL -model NAME ...   (model://MODEL through GAZEBO_MODEL_PATH and car's models/)
 """
 from __future__ import annotations
 
@@ -12,7 +14,7 @@ import math
 import sys
 
 FLOAT_FLAGS = {'-x': 'x', '-y': 'y', '-z': 'z', '-R': 'roll', '-P': 'pitch', '-Y': 'yaw', '-timeout': 'timeout'}
-STRING_FLAGS = {'-param': 'param', '-file': 'file', '-model': 'model', '-robot_namespace': 'robot_namespace',
+STRING_FLAGS = {'-param': 'param', '-file': 'file', '-database': 'database', '-model': 'model', '-robot_namespace': 'robot_namespace',
                 '-reference_frame': 'reference_frame', '-gazebo_namespace': 'gazebo_namespace'}
 
 
@@ -25,7 +27,7 @@ def parse_args(argv: list) -> dict:
     # robot_namespace None = not given: main() puts the caller's namespace, as gazebo_ros's spawn_model does
     opts = {'x': 0.0, 'y': 0.0, 'z': 0.0, 'roll': 0.0, 'pitch': 0.0, 'yaw': 0.0, 'timeout': 60.0,
             'robot_namespace': None, 'reference_frame': '', 'gazebo_namespace': '/gazebo', 'format': None,
-            'unpause': False, 'param': None, 'file': None, 'model': None,
+            'unpause': False, 'param': None, 'file': None, 'database': None, 'model': None,
             'stdin': False, 'joints': [], 'wait': None, 'package_to_model': False}
     i = 0
     while i < len(argv):
@@ -72,12 +74,28 @@ def parse_args(argv: list) -> dict:
     if opts['model'] is None:
         raise UsageError('-model NAME is required')
     if opts['format'] is None:
-        raise UsageError('say -urdf (car simulates URDF robots)')
-    if opts['format'] == 'sdf':
-        raise UsageError('-sdf: SDF robot models are not supported by car yet; give a URDF with -urdf')
-    if [opts['param'] is not None, opts['file'] is not None, opts['stdin']].count(True) != 1:
-        raise UsageError('give exactly one of -param NAME, -file FILE and -stdin')
+        raise UsageError('say -urdf or -sdf')
+    if [opts['param'] is not None, opts['file'] is not None, opts['database'] is not None,
+            opts['stdin']].count(True) != 1:
+        raise UsageError('give exactly one of -param NAME, -file FILE, -database MODEL and -stdin')
     return opts
+
+
+# gazebo_ros spawn_model's -database document: the server includes model://NAME (docs/COMPAT-sdf.md 13)
+MODEL_DATABASE_TEMPLATE = """\
+<sdf version="1.4">
+    <world name="default">
+        <include>
+            <uri>model://{}</uri>
+        </include>
+    </world>
+</sdf>"""
+
+
+def service_name(opts: dict) -> str:
+    """The spawn service gazebo_ros's spawn_model calls: spawn_sdf_model for -sdf, spawn_urdf_model for -urdf."""
+    return opts['gazebo_namespace'].rstrip('/') + ('/spawn_sdf_model' if opts['format'] == 'sdf'
+                                                    else '/spawn_urdf_model')
 
 
 def default_robot_namespace() -> str:
@@ -151,6 +169,9 @@ def main(argv=None) -> int:
         if xml == '':
             rospy.logfatal('spawn_model: -stdin: standard input was empty')
             return 1
+    elif o['database'] is not None:
+        rospy.loginfo('spawn_model: loading model XML from the model database (model://%s)', o['database'])
+        xml = MODEL_DATABASE_TEMPLATE.format(o['database'])
     elif o['param'] is not None:
         if not rospy.has_param(o['param']):
             rospy.logfatal('spawn_model: parameter %s is not set', o['param'])
@@ -163,7 +184,7 @@ def main(argv=None) -> int:
         except OSError as e:
             rospy.logfatal('spawn_model: %s: %s', o['file'], e.strerror)
             return 1
-    source = 'stdin' if o['stdin'] else (o['file'] or o['param'])
+    source = 'stdin' if o['stdin'] else (o['file'] or o['param'] or o['database'])
     try:
         check_xml(xml, source)
     except UsageError as e:
@@ -171,7 +192,7 @@ def main(argv=None) -> int:
         return 1
     if o['package_to_model']:
         xml = package_to_model(xml)
-    service = ns + '/spawn_urdf_model'
+    service = service_name(o)
     try:
         rospy.wait_for_service(service, timeout=o['timeout'])
     except rospy.ROSException:

@@ -38,6 +38,13 @@ def cmd_check(a) -> int:
         print(json.dumps(report, indent=2))
         return code
     print('car world check: %s' % a.world)
+    for p in report.get('plugins', []):
+        # a world model's plug-in, simulated as a robot's (docs/COMPAT-sdf.md 16), with its resolved parameters
+        where = " in sensor '%s' (%s) on link '%s'" % (p['sensor'], p['sensor_type'], p['link']) if p['sensor'] else ''
+        print("  plug-in %s (%s) of model '%s' -> %s%s" % (p['name'], p['filename'], p['model'], p['kind'], where))
+        for prm in p['params']:
+            print('      %-32s %s%s%s' % (prm['key'], prm['value'] if prm['value'] != '' else "''",
+                                        (' ' + prm['unit']) if prm['unit'] else '', '   (default)' if prm['default'] else ''))
     for f in report['findings'] or [{'severity': 'ok', 'element': '', 'message': 'no findings'}]:
         print('  %-7s %s%s' % (f['severity'], (f['element'] + ': ') if f['element'] else '', f['message']))
         if 'expected' in f:

@@ -267,6 +267,7 @@ def check(path: str, inertia_tolerance: float = 0.10) -> dict:
     like check_model's: {'source', 'findings', 'counts'}."""
     from car import _core, model_check
     findings = []
+    plugins = []  # the plug-ins of world models simulated as robots
     try:
         tree = flatten(path)
     except WorldError as e:
@@ -298,7 +299,17 @@ def check(path: str, inertia_tolerance: float = 0.10) -> dict:
                         for f in model_check.inertia_findings(m, inertia_tolerance):
                             f['element'] = prefix + f['element']
                             findings.append(f)
+                # models with plug-ins, sensors or joints are robots (docs/COMPAT-sdf.md 16): every plug-in with
+                # its resolved parameters, as check_model lists them
+                for r in desc.get('robots', []):
+                    prefix = '%s/model[%s]/' % (wname, r['name'])
+                    findings += [dict(f, element=prefix + f['element']) for f in r['model']['diagnostics']]
+                    if r['config'] is None:
+                        findings.append(_finding('error', 'plugin-config', prefix, r['config_error']))
+                        continue
+                    findings += [dict(f, element=prefix + f['element']) for f in r['config']['diagnostics']]
+                    plugins += [dict(p, model=r['name']) for p in r['config']['plugins']]
     order = {'error': 0, 'warning': 1, 'info': 2}
     findings.sort(key=lambda f: (order[f['severity']], f['element']))
     counts = {s: sum(1 for f in findings if f['severity'] == s) for s in ('error', 'warning', 'info')}
-    return {'source': path, 'findings': findings, 'counts': counts}
+    return {'source': path, 'findings': findings, 'counts': counts, 'plugins': plugins}

@@ -12,6 +12,7 @@
 #include "car_sim/description.hpp"
 #include "car_sim/mesh.hpp"
 #include "package_path.hpp"
+#include "sdf_model.hpp"
 #include "validate.hpp"
 #include "xml_util.hpp"
 
@@ -112,7 +113,8 @@ WorldLink read_link(const sdf::Link& l, const std::string& model, WorldDescripti
   l.SemanticPose().Resolve(p);  // relative to the model frame
   wl.pose = to_iso(p);
   const auto& in = l.Inertial();
-  if (l.Element() && l.Element()->HasElement("inertial")) {
+  // SDF's default when <inertial> is absent: 1 kg, unit inertia (docs/COMPAT-sdf.md 3); the DOM fills it in
+  {
     Inertial ci;
     ci.mass = in.MassMatrix().Mass();
     ci.origin = to_iso(in.Pose());
@@ -170,6 +172,13 @@ void apply_state(const sdf::World& w, WorldDescription* desc) {
       if (!me->HasElement("pose")) continue;
       for (auto& m : desc->models)
         if (m.name == name) m.pose = to_iso(me->Get<ignition::math::Pose3d>("pose"));
+      for (auto& r : desc->robots)
+        if (r.name == name) {
+          // the state's model pose replaces the model's own: undo the raw pose the robot's root_pose holds
+          const sdf::Model* sm = w.ModelByName(name);
+          r.pose = to_iso(me->Get<ignition::math::Pose3d>("pose")) * (sm ? to_iso(sm->RawPose()).inverse()
+                                                                         : Eigen::Isometry3d::Identity());
+        }
     }
   }
 }
@@ -178,6 +187,18 @@ void apply_state(const sdf::World& w, WorldDescription* desc) {
 // the parent is (the world tools flatten nested models the same way).
 void add_model(const sdf::Model& m, const std::string& prefix, const Eigen::Isometry3d& parent_pose, bool parent_static,
                WorldDescription* d) {
+  // rule 16 of docs/COMPAT-sdf.md: a top-level model with plug-ins, sensors or joints is a robot
+  if (prefix.empty() && m.ModelCount() == 0 && detail::sdf_model_is_robot(m)) {
+    WorldRobotDesc rd;
+    rd.name = m.Name();
+    rd.robot = detail::convert_sdf_model(m, d->source, LoadOptions());
+    ignition::math::Pose3d wp;
+    m.SemanticPose().Resolve(wp);
+    // convert_sdf_model composed the raw <pose> into root_pose; the resolved one replaces it
+    rd.pose = to_iso(wp) * to_iso(m.RawPose()).inverse();
+    d->robots.push_back(std::move(rd));
+    return;
+  }
   WorldModelDesc md;
   md.name = prefix.empty() ? m.Name() : prefix + "::" + m.Name();
   md.is_static = m.Static() || parent_static;

@@ -350,6 +350,22 @@ py::dict world_dict(const WorldDescription& d) {
     models.append(md);
   }
   out["models"] = models;
+  // world models simulated as robots (plug-ins, sensors, joints; docs/COMPAT-sdf.md 16), with their plug-ins
+  py::list robots;
+  for (const auto& r : d.robots) {
+    py::dict rd;
+    rd["name"] = r.name;
+    rd["static"] = r.robot.is_static;
+    rd["model"] = model_dict(r.robot.model);
+    try {
+      rd["config"] = config_dict(resolve_plugins(r.robot.model));
+    } catch (const LoadError& e) {
+      rd["config"] = py::none();
+      rd["config_error"] = e.what();
+    }
+    robots.append(rd);
+  }
+  out["robots"] = robots;
   py::list diags;  // what the loader found (e.g. masses outside the stated range)
   for (const auto& x : d.diagnostics) diags.append(diagnostic(x));
   out["diagnostics"] = diags;
@@ -387,7 +403,9 @@ PYBIND11_MODULE(_core, m) {
         LoadOptions o;
         o.throw_on_error = false;
         o.lump_fixed_joints = lump_fixed_joints;
-        const RobotModel model = load_urdf_string(xml, source, o);
+        // an <sdf> document is read as an SDF robot (docs/COMPAT-sdf.md); SDF keeps fixed joints either way
+        const RobotModel model = is_sdf_document(xml) ? load_sdf_model_string(xml, source, o).model
+                                                      : load_urdf_string(xml, source, o);
         py::dict out;
         out["model"] = model_dict(model);
         // A plug-in that cannot be configured is reported as an error finding, not raised.
@@ -479,6 +497,15 @@ PYBIND11_MODULE(_core, m) {
           py::arg("xml"), py::arg("name"), py::arg("x") = 0.0, py::arg("y") = 0.0, py::arg("z") = 0.0,
           py::arg("roll") = 0.0, py::arg("pitch") = 0.0, py::arg("yaw") = 0.0, py::arg("robot_namespace") = "",
           "Spawn a robot from URDF text with its root link at the given pose.")
+      .def(
+          "spawn_sdf",
+          [](World& w, const std::string& xml, const std::string& name, double x, double y, double z, double roll,
+             double pitch, double yaw, const std::string& ns) {
+            w.spawn_sdf(load_sdf_model_string(xml, name), name, pose_of(x, y, z, roll, pitch, yaw), ns);
+          },
+          py::arg("xml"), py::arg("name"), py::arg("x") = 0.0, py::arg("y") = 0.0, py::arg("z") = 0.0,
+          py::arg("roll") = 0.0, py::arg("pitch") = 0.0, py::arg("yaw") = 0.0, py::arg("robot_namespace") = "",
+          "Spawn a robot from SDF text (docs/COMPAT-sdf.md): the pose goes on top of the model's own <pose>.")
       .def("remove", &World::remove, py::arg("name"))
       .def("step", &World::step, py::arg("n") = 1, py::call_guard<py::gil_scoped_release>(),
            "Advance n fixed steps (releases the GIL).")

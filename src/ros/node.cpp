@@ -62,6 +62,8 @@ bool SimNode::init() {
   }
   nh_.setParam("/use_sim_time", true);
   log_world(world_file);
+  // world models with plug-ins or sensors are robots from the start: their topics (docs/COMPAT-sdf.md 16)
+  for (const auto& name : world_->robot_names()) make_io(name);
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
   if (ros_network) {
     model_states_pub_ = gz_.advertise<gazebo_msgs::ModelStates>("model_states", 100);

@@ -58,6 +58,8 @@ car_sim::ModelState state_of(const geometry_msgs::Pose& p, const geometry_msgs::
 
 void SimNode::advertise_services() {
   services_.push_back(gz_.advertiseService("spawn_urdf_model", &SimNode::spawn, this));
+  // gazebo_ros: spawn_urdf_model and spawn_sdf_model share one handler that takes either format (docs/COMPAT-sdf.md)
+  services_.push_back(gz_.advertiseService("spawn_sdf_model", &SimNode::spawn, this));
   services_.push_back(gz_.advertiseService("delete_model", &SimNode::remove, this));
   services_.push_back(gz_.advertiseService("get_model_state", &SimNode::get_state, this));
   services_.push_back(gz_.advertiseService("set_model_state", &SimNode::set_state, this));
@@ -116,7 +118,12 @@ bool SimNode::spawn(gazebo_msgs::SpawnModel::Request& req, gazebo_msgs::SpawnMod
     return true;
   }
   try {
-    const car_sim::RobotModel model = car_sim::load_urdf_string(req.model_xml, req.model_name);
+    // <sdf> documents (spawn_model -sdf / -database) and URDF alike, as gazebo_ros's spawnSDFModel
+    const bool is_sdf = car_sim::is_sdf_document(req.model_xml);
+    const car_sim::SdfRobot sdf_robot =
+        is_sdf ? car_sim::load_sdf_model_string(req.model_xml, req.model_name) : car_sim::SdfRobot();
+    const car_sim::RobotModel model =
+        is_sdf ? sdf_robot.model : car_sim::load_urdf_string(req.model_xml, req.model_name);
     for (const auto& d : model.diagnostics) {
       if (d.severity == car_sim::Severity::Warning)
         ROS_WARN("car: %s: %s: %s", req.model_name.c_str(), d.element.c_str(), d.message.c_str());
@@ -124,7 +131,10 @@ bool SimNode::spawn(gazebo_msgs::SpawnModel::Request& req, gazebo_msgs::SpawnMod
       else if (d.code == "link-lumped" || d.code == "world-anchor")
         ROS_INFO("car: %s: %s", req.model_name.c_str(), d.message.c_str());
     }
-    world_->spawn(model, req.model_name, from_pose(req.initial_pose), req.robot_namespace);
+    if (is_sdf)
+      world_->spawn_sdf(sdf_robot, req.model_name, from_pose(req.initial_pose), req.robot_namespace);
+    else
+      world_->spawn(model, req.model_name, from_pose(req.initial_pose), req.robot_namespace);
     for (const auto& d : world_->robot(req.model_name).config.diagnostics)
       if (d.severity == car_sim::Severity::Warning)
         ROS_WARN("car: %s: %s: %s", req.model_name.c_str(), d.element.c_str(), d.message.c_str());

@@ -212,9 +212,16 @@ struct World::Impl : WorldAccess {
 World::World(WorldDescription desc, WorldOptions options) : desc_(std::move(desc)), options_(options) {
   impl_ = std::make_unique<Impl>(desc_, options_);
   impl_->phys = std::make_unique<physics::Physics>(desc_, impl_->physics_options(), removed_);
+  // world models with plug-ins, sensors or joints are robots from the start (docs/COMPAT-sdf.md 16)
+  for (const auto& r : desc_.robots) spawn_sdf(r.robot, r.name, r.pose);
 }
 
 World::~World() = default;
+
+void World::spawn_sdf(const SdfRobot& robot, const std::string& name, const Eigen::Isometry3d& pose,
+                      const std::string& robot_namespace) {
+  spawn(robot.model, name, pose * robot.root_pose, robot_namespace);
+}
 
 void World::spawn(const RobotModel& model, const std::string& name, const Eigen::Isometry3d& pose,
                   const std::string& robot_namespace) {

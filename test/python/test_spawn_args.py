@@ -25,15 +25,15 @@ def test_yaw_quaternion():
 @pytest.mark.parametrize('args, message', [
     ('-urdf -param robot_description', '-model NAME is required'),
     ('-param robot_description -model m', 'say -urdf'),
-    ('-urdf -model m', 'give exactly one of -param NAME, -file FILE and -stdin'),
-    ('-urdf -stdin -file f -model m', 'give exactly one of -param NAME, -file FILE and -stdin'),
+    ('-urdf -model m', 'give exactly one of -param NAME, -file FILE, -database MODEL and -stdin'),
+    ('-urdf -stdin -file f -model m', 'give exactly one of -param NAME, -file FILE, -database MODEL and -stdin'),
     ('-urdf -stdin -model m -J spin', '-J needs a joint name and a position'),
     ('-urdf -stdin -model m -J spin half', "-J spin needs a number, got 'half'"),
     ('-urdf -stdin -model m -J spin nan', "-J spin needs a finite number"),
     ('-urdf -stdin -model m -wait', '-wait needs a model name'),
     ('-urdf -param p -model m -x one', "-x needs a number, got 'one'"),
     ('-urdf -param p -model m -bogus', "unknown argument '-bogus'"),
-    ('-sdf -file m.sdf -model m', 'SDF robot models are not supported'),
+    ('-sdf -database m -file m.sdf -model m', 'give exactly one of'),
 ])
 def test_bad_arguments(args, message):
     with pytest.raises(spawn.UsageError, match=message):

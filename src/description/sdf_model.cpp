@@ -1,0 +1,463 @@
+// SDF robots: an sdformat DOM model to the core's RobotModel (links with SDF's default inertia, shapes, <surface>,
+// joints, <plugin>s and <sensor>s), so an SDF robot is spawned and simulated as a URDF robot is.
+// Rules and upstream sources: docs/COMPAT-sdf.md (numbers in comments refer to its rules).
+#include "sdf_model.hpp"
+
+#include <sdf/sdf.hh>
+#include <tinyxml2.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "car_sim/description.hpp"
+#include "lumping.hpp"
+#include "xml_util.hpp"
+
+namespace car_sim {
+
+sdf::ParserConfig parser_config(const std::string& world_file);  // sdf_world.cpp: the include rule
+void parse_gazebo_extensions(const tinyxml2::XMLElement* robot, RobotModel* model);  // model/gazebo_ext.cpp
+
+namespace {
+
+Eigen::Isometry3d to_iso(const ignition::math::Pose3d& p) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(p.Pos().X(), p.Pos().Y(), p.Pos().Z());
+  T.linear() = Eigen::Quaterniond(p.Rot().W(), p.Rot().X(), p.Rot().Y(), p.Rot().Z()).normalized().toRotationMatrix();
+  return T;
+}
+
+int line_of(const sdf::ElementPtr& e) { return e && e->LineNumber() ? *e->LineNumber() : 0; }
+
+[[noreturn]] void fail_with(const std::string& source, const sdf::Errors& errors) {
+  const sdf::Error& e = errors.front();
+  std::string reason = e.Message();
+  if (errors.size() > 1) reason += " (and " + std::to_string(errors.size() - 1) + " more)";
+  // an error inside an included file names that file; one in the text itself names the source (sdformat calls it
+  // "data-string")
+  const bool in_file = e.FilePath() && std::ifstream(*e.FilePath()).good();
+  throw LoadError(in_file ? *e.FilePath() : source, e.LineNumber() ? *e.LineNumber() : 0,
+                  e.XmlPath() ? *e.XmlPath() : "", reason);
+}
+
+// Rule 9: box, cylinder, sphere, mesh, plane; anything else is skipped with a warning.
+std::optional<Shape> to_shape(const sdf::Geometry& g, const std::string& where, int line, RobotModel* m) {
+  Shape s;
+  switch (g.Type()) {
+    case sdf::GeometryType::BOX:
+      s.type = ShapeType::Box;
+      s.size = Eigen::Vector3d(g.BoxShape()->Size().X(), g.BoxShape()->Size().Y(), g.BoxShape()->Size().Z());
+      return s;
+    case sdf::GeometryType::CYLINDER:
+      s.type = ShapeType::Cylinder;
+      s.radius = g.CylinderShape()->Radius();
+      s.length = g.CylinderShape()->Length();
+      return s;
+    case sdf::GeometryType::SPHERE:
+      s.type = ShapeType::Sphere;
+      s.radius = g.SphereShape()->Radius();
+      return s;
+    case sdf::GeometryType::PLANE: {
+      s.type = ShapeType::Plane;
+      const auto n = g.PlaneShape()->Normal();
+      s.normal = Eigen::Vector3d(n.X(), n.Y(), n.Z()).normalized();
+      s.size = Eigen::Vector3d(g.PlaneShape()->Size().X(), g.PlaneShape()->Size().Y(), 0.0);
+      return s;
+    }
+    case sdf::GeometryType::MESH:
+      s.type = ShapeType::Mesh;
+      s.mesh_uri = g.MeshShape()->Uri();
+      s.mesh_scale = Eigen::Vector3d(g.MeshShape()->Scale().X(), g.MeshShape()->Scale().Y(), g.MeshShape()->Scale().Z());
+      return s;
+    default:
+      m->diagnostics.push_back({Severity::Warning, "geometry-unsupported", where,
+                                "geometry type not simulated by car; the shape is ignored", line});
+      return std::nullopt;
+  }
+}
+
+// A child element by path ("friction/ode/mu"), nullptr when any step is absent (never creates one).
+sdf::ElementPtr find_path(sdf::ElementPtr e, const std::string& path) {
+  std::stringstream ss(path);
+  std::string step;
+  while (e && std::getline(ss, step, '/')) e = e->HasElement(step) ? e->GetElement(step) : nullptr;
+  return e;
+}
+
+// Rule 8: a collision's <surface> on the URDF path's GazeboLinkExt fields; only values written are set.
+GazeboLinkExt read_surface(const sdf::Collision& c) {
+  GazeboLinkExt ext;
+  const sdf::ElementPtr s = find_path(c.Element(), "surface");
+  if (!s) return ext;
+  auto num = [&](const char* path) -> std::optional<double> {
+    if (auto e = find_path(s, path)) return e->Get<double>();
+    return std::nullopt;
+  };
+  ext.mu1 = num("friction/ode/mu");
+  ext.mu2 = num("friction/ode/mu2");
+  if (auto e = find_path(s, "friction/ode/fdir1")) {
+    const auto v = e->Get<ignition::math::Vector3d>();
+    ext.fdir1 = Eigen::Vector3d(v.X(), v.Y(), v.Z());
+  }
+  ext.kp = num("contact/ode/kp");
+  ext.kd = num("contact/ode/kd");
+  ext.min_depth = num("contact/ode/min_depth");
+  ext.max_vel = num("contact/ode/max_vel");
+  return ext;
+}
+
+bool same_surface(const GazeboLinkExt& a, const GazeboLinkExt& b) {
+  return a.mu1 == b.mu1 && a.mu2 == b.mu2 && a.kp == b.kp && a.kd == b.kd && a.min_depth == b.min_depth &&
+         a.max_vel == b.max_vel && a.fdir1.has_value() == b.fdir1.has_value() &&
+         (!a.fdir1 || a.fdir1->isApprox(*b.fdir1));
+}
+
+bool surface_empty(const GazeboLinkExt& a) { return same_surface(a, GazeboLinkExt()); }
+
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '&') out += "&amp;";
+    else if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '"') out += "&quot;";
+    else out += c;
+  }
+  return out;
+}
+
+Link convert_link(const sdf::Link& l, const std::string& where, RobotModel* m) {
+  Link out;
+  out.name = l.Name();
+  // Rule 3: the DOM fills SDF's defaults (mass 1 kg, inertia diag(1, 1, 1) kg m^2) when <inertial> is absent.
+  const auto& in = l.Inertial();
+  Inertial ci;
+  ci.mass = in.MassMatrix().Mass();
+  ci.origin = to_iso(in.Pose());
+  const auto moi = in.MassMatrix().Moi();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) ci.inertia(r, c) = moi(r, c);
+  const std::string why = inertial_problem(ci.mass, ci.inertia);
+  if (!why.empty())
+    m->diagnostics.push_back({Severity::Error, "inertial", where + "/inertial", why, line_of(l.Element())});
+  out.inertial = ci;
+  std::string surface_from;
+  for (uint64_t i = 0; i < l.CollisionCount(); ++i) {
+    const sdf::Collision* c = l.CollisionByIndex(i);
+    const std::string here = where + "/collision[" + c->Name() + "]";
+    auto shape = to_shape(*c->Geom(), here, line_of(c->Element()), m);
+    if (!shape) continue;
+    ignition::math::Pose3d cp;
+    c->SemanticPose().Resolve(cp);  // rule 4: relative to the link
+    shape->origin = to_iso(cp);
+    out.collisions.push_back(*shape);
+    const GazeboLinkExt ext = read_surface(*c);
+    if (surface_empty(ext)) continue;
+    if (surface_from.empty()) {
+      surface_from = c->Name();
+      const std::string material = out.gazebo.material;
+      out.gazebo = ext;
+      out.gazebo.material = material;
+    } else if (!same_surface(ext, out.gazebo)) {
+      m->diagnostics.push_back({Severity::Warning, "surface-per-link", here + "/surface",
+                                "car keeps one surface per link: collision '" + surface_from +
+                                    "''s surface is used for every collision of link '" + l.Name() + "'",
+                                line_of(c->Element())});
+    }
+  }
+  for (uint64_t i = 0; i < l.VisualCount(); ++i) {
+    const sdf::Visual* v = l.VisualByIndex(i);
+    auto shape = to_shape(*v->Geom(), where + "/visual[" + v->Name() + "]", line_of(v->Element()), m);
+    if (!shape) continue;
+    ignition::math::Pose3d vp;
+    v->SemanticPose().Resolve(vp);
+    shape->origin = to_iso(vp);
+    Visual vis;
+    vis.name = v->Name();
+    vis.shape = *shape;
+    if (const sdf::Material* mat = v->Material()) {
+      vis.material.name = mat->ScriptName();
+      if (mat->Element() && mat->Element()->HasElement("diffuse")) {
+        const auto d = mat->Diffuse();
+        vis.material.has_rgba = true;
+        vis.material.rgba = Eigen::Vector4d(d.R(), d.G(), d.B(), d.A());
+      }
+      if (out.gazebo.material.empty()) out.gazebo.material = mat->ScriptName();
+    }
+    out.visuals.push_back(std::move(vis));
+  }
+  return out;
+}
+
+// Rule 5: SDF joint types onto car's; the others are refused.
+JointType to_joint_type(const sdf::Joint& j, const sdf::JointAxis* axis, const std::string& where, int line,
+                        const std::string& source) {
+  switch (j.Type()) {
+    case sdf::JointType::FIXED: return JointType::Fixed;
+    case sdf::JointType::CONTINUOUS: return JointType::Continuous;
+    case sdf::JointType::PRISMATIC: return JointType::Prismatic;
+    case sdf::JointType::REVOLUTE:
+      // SDF's "no limit" defaults are -1e16 / 1e16: such a revolute joint turns freely
+      if (axis && axis->Lower() <= -1e16 && axis->Upper() >= 1e16) return JointType::Continuous;
+      return JointType::Revolute;
+    default: break;
+  }
+  const std::string type = j.Element() && j.Element()->HasAttribute("type")
+                               ? j.Element()->GetAttribute("type")->GetAsString()
+                               : "?";
+  throw LoadError(source, line, where,
+                  "joint type '" + type + "' is not simulated by car (revolute, continuous, prismatic and fixed are)");
+}
+
+}  // namespace
+
+namespace detail {
+
+bool sdf_model_is_robot(const sdf::Model& m) {
+  if (m.JointCount() > 0) return true;
+  if (m.Element() && m.Element()->HasElement("plugin")) return true;
+  for (uint64_t i = 0; i < m.LinkCount(); ++i)
+    if (m.LinkByIndex(i)->SensorCount() > 0) return true;
+  return false;
+}
+
+SdfRobot convert_sdf_model(const sdf::Model& sm, const std::string& source, const LoadOptions& options) {
+  SdfRobot out;
+  RobotModel& m = out.model;
+  m.name = sm.Name();
+  m.source = source;
+  out.is_static = sm.Static();
+  const std::string mwhere = "model[" + sm.Name() + "]";
+  if (sm.ModelCount() > 0)
+    throw LoadError(source, line_of(sm.Element()), mwhere, "nested models are not simulated by car as one robot");
+  if (sm.LinkCount() == 0) throw LoadError(source, line_of(sm.Element()), mwhere, "the model has no <link>");
+
+  for (uint64_t i = 0; i < sm.LinkCount(); ++i) {
+    const sdf::Link* l = sm.LinkByIndex(i);
+    m.links.push_back(convert_link(*l, mwhere + "/link[" + l->Name() + "]", &m));
+  }
+
+  // Joints: parent and child resolved through frames; the child's pose in the parent gives the joint origin.
+  std::map<std::string, std::string> parent_of;
+  bool world_parent = false;
+  for (uint64_t i = 0; i < sm.JointCount(); ++i) {
+    const sdf::Joint* sj = sm.JointByIndex(i);
+    const std::string where = mwhere + "/joint[" + sj->Name() + "]";
+    const int line = line_of(sj->Element());
+    const sdf::JointAxis* axis = sj->Axis(0);
+    Joint j;
+    j.name = sj->Name();
+    j.type = to_joint_type(*sj, axis, where, line, source);
+    std::string parent, child;
+    if (!sj->ResolveParentLink(parent).empty() || parent.empty()) parent = sj->ParentLinkName();
+    if (!sj->ResolveChildLink(child).empty() || child.empty()) child = sj->ChildLinkName();
+    if (child == "world" || !sm.LinkByName(child))
+      throw LoadError(source, line, where + "/child", "child '" + child + "' is not a link of the model");
+    if (parent != "world" && !sm.LinkByName(parent))
+      throw LoadError(source, line, where + "/parent", "parent '" + parent + "' is not a link of the model");
+    if (parent_of.count(child))
+      throw LoadError(source, line, where, "link '" + child + "' already has the parent joint of link '" +
+                                               parent_of[child] + "'; car simulates a tree of links");
+    parent_of[child] = parent;
+    j.parent = parent;
+    j.child = child;
+    world_parent = world_parent || parent == "world";
+    // rule 4: child link frame in the parent link frame (the model frame for `world`)
+    ignition::math::Pose3d cp;
+    const sdf::Errors e = parent == "world" ? sm.LinkByName(child)->SemanticPose().Resolve(cp)
+                                            : sm.LinkByName(child)->SemanticPose().Resolve(cp, parent);
+    if (!e.empty()) fail_with(source, e);
+    j.origin = to_iso(cp);
+    // rule 6: the joint frame in the child link; car's joint frame is the child's
+    ignition::math::Pose3d jp;
+    if (sj->SemanticPose().Resolve(jp, child).empty() && !to_iso(jp).isApprox(Eigen::Isometry3d::Identity(), 1e-9))
+      m.diagnostics.push_back({Severity::Warning, "joint-pose", where + "/pose",
+                               "the joint frame is offset from child link '" + child +
+                                   "'; car turns the joint about the child link's origin",
+                               line});
+    if (j.type != JointType::Fixed && axis) {
+      ignition::math::Vector3d xyz;
+      if (!axis->ResolveXyz(xyz, child).empty()) xyz = axis->Xyz();
+      j.axis_as_written = Eigen::Vector3d(axis->Xyz().X(), axis->Xyz().Y(), axis->Xyz().Z());
+      const Eigen::Vector3d a(xyz.X(), xyz.Y(), xyz.Z());
+      if (a.norm() < 1e-9)
+        throw LoadError(source, line, where + "/axis/xyz", "axis has zero length; the joint needs a direction");
+      j.axis = a.normalized();
+      j.damping = axis->Damping();
+      j.friction = axis->Friction();
+      // rule 3: effort/velocity -1 = no limit (0 here, as urdfdom leaves an unwritten one)
+      if (j.type != JointType::Continuous)
+        j.limits = JointLimits{axis->Lower(), axis->Upper(), std::max(axis->Effort(), 0.0),
+                               std::max(axis->MaxVelocity(), 0.0)};
+      else if (axis->Effort() >= 0.0 || axis->MaxVelocity() >= 0.0)
+        j.limits = JointLimits{0.0, 0.0, std::max(axis->Effort(), 0.0), std::max(axis->MaxVelocity(), 0.0)};
+    }
+    m.joints.push_back(j);
+  }
+
+  // Rule 7 and 12: one tree; a static model's parentless links hang from `world` on fixed joints.
+  std::vector<std::string> roots;
+  for (const auto& l : m.links)
+    if (!parent_of.count(l.name)) roots.push_back(l.name);
+  ignition::math::Pose3d mp = sm.RawPose();
+  const Eigen::Isometry3d model_pose = to_iso(mp);
+  if (out.is_static || world_parent) {
+    for (const auto& r : roots) {
+      if (!out.is_static) {
+        throw LoadError(source, line_of(sm.LinkByName(r)->Element()), mwhere + "/link[" + r + "]",
+                        "link '" + r + "' is joined to neither `world` nor another link; car simulates one tree");
+      }
+      ignition::math::Pose3d lp;
+      sm.LinkByName(r)->SemanticPose().Resolve(lp);
+      Joint j;
+      j.name = "world_static_" + r;
+      j.type = JointType::Fixed;
+      j.parent = "world";
+      j.child = r;
+      j.origin = to_iso(lp);
+      m.joints.push_back(j);
+    }
+    Link world;
+    world.name = "world";
+    m.links.insert(m.links.begin(), world);
+    m.root_link = "world";
+    out.root_pose = model_pose;
+  } else {
+    if (roots.size() != 1) {
+      const std::string extra = roots.size() > 1 ? roots[1] : m.links.front().name;
+      throw LoadError(source, line_of(sm.Element()), mwhere + "/link[" + extra + "]",
+                      roots.size() > 1 ? "link '" + extra + "' is joined to no other link (a second free body); car "
+                                                                "simulates one tree of links per model"
+                                       : "the joints form a loop; car simulates a tree of links");
+    }
+    m.root_link = roots.front();
+    ignition::math::Pose3d lp;
+    sm.LinkByName(m.root_link)->SemanticPose().Resolve(lp);
+    out.root_pose = model_pose * to_iso(lp);
+  }
+
+  // Rule 10: plug-ins and sensors through the URDF path's <gazebo> reader, so every kind resolves the same.
+  std::string xml = "<robot>";
+  std::vector<int> plugin_lines, sensor_lines;
+  const sdf::ElementPtr me = sm.Element();
+  if (me && me->HasElement("plugin"))
+    for (sdf::ElementPtr p = me->GetElement("plugin"); p; p = p->GetNextElement("plugin")) {
+      xml += "<gazebo>" + p->ToString("") + "</gazebo>";
+      plugin_lines.push_back(line_of(p));
+    }
+  std::vector<std::pair<const sdf::Sensor*, std::string>> sensors;
+  for (uint64_t i = 0; i < sm.LinkCount(); ++i) {
+    const sdf::Link* l = sm.LinkByIndex(i);
+    for (uint64_t k = 0; k < l->SensorCount(); ++k) {
+      const sdf::Sensor* s = l->SensorByIndex(k);
+      xml += "<gazebo reference=\"" + xml_escape(l->Name()) + "\">" + s->Element()->ToString("") + "</gazebo>";
+      sensors.emplace_back(s, l->Name());
+    }
+  }
+  xml += "</robot>";
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
+    throw LoadError(source, 0, mwhere, std::string("cannot read plug-ins and sensors: ") + doc.ErrorStr());
+  const size_t before = m.diagnostics.size();
+  parse_gazebo_extensions(doc.RootElement(), &m);
+  // findings of that reader name our elements, but its lines are of the rebuilt text: drop them
+  for (size_t i = before; i < m.diagnostics.size(); ++i) m.diagnostics[i].line = 0;
+  for (size_t i = 0; i < m.plugins.size() && i < plugin_lines.size(); ++i) m.plugins[i].line = plugin_lines[i];
+  for (auto& spec : m.sensors) {
+    for (const auto& [s, link] : sensors) {
+      if (s->Name() != spec.name || link != spec.link) continue;
+      spec.line = line_of(s->Element());
+      ignition::math::Pose3d sp;
+      if (s->SemanticPose().Resolve(sp, link).empty()) spec.pose = to_iso(sp);  // rule 4
+      int k = 0;
+      if (s->Element()->HasElement("plugin"))
+        for (sdf::ElementPtr p = s->Element()->GetElement("plugin"); p && k < static_cast<int>(spec.plugins.size());
+             p = p->GetNextElement("plugin"))
+          spec.plugins[k++].line = line_of(p);
+    }
+  }
+
+  detail::find_world_anchor(&m);
+  if (options.throw_on_error)
+    for (const auto& d : m.diagnostics)
+      if (d.severity == Severity::Error) throw LoadError(source, d.line, d.element, d.message);
+  return out;
+}
+
+}  // namespace detail
+
+bool is_sdf_document(const std::string& xml) {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) return false;
+  return doc.RootElement() && std::string(doc.RootElement()->Name()) == "sdf";
+}
+
+namespace {
+
+// Rule 13: a model:// include that resolves nowhere names the model and every folder searched.
+void check_includes(const tinyxml2::XMLElement* e, const std::string& source, const std::string& base_dir) {
+  for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    if (std::string(c->Name()) == "include") {
+      const tinyxml2::XMLElement* u = c->FirstChildElement("uri");
+      const std::string uri = u && u->GetText() ? detail::trim(u->GetText()) : "";
+      if (!uri.empty() && resolve_uri(uri, base_dir).empty()) {
+        std::string dirs;
+        if (uri.rfind("model://", 0) == 0)
+          for (const auto& d : model_path()) dirs += (dirs.empty() ? "" : ", ") + d;
+        throw LoadError(source, u->GetLineNum(), "include/uri",
+                        uri.rfind("model://", 0) == 0
+                            ? "model '" + uri.substr(8, uri.find('/', 8) - 8) + "' not found in GAZEBO_MODEL_PATH "
+                                  "and car's models/ (searched: " + dirs + ")"
+                            : "'" + uri + "' not found");
+      }
+    }
+    check_includes(c, source, base_dir);
+  }
+}
+
+}  // namespace
+
+SdfRobot load_sdf_model_string(const std::string& xml, const std::string& source_name, const LoadOptions& options,
+                               const std::string& base_dir) {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
+    throw LoadError(source_name, doc.ErrorLineNum(), "", std::string("malformed XML: ") + doc.ErrorName());
+  const tinyxml2::XMLElement* root = doc.RootElement();
+  if (!root || std::string(root->Name()) != "sdf")
+    throw LoadError(source_name, root ? root->GetLineNum() : 0, root ? root->Name() : "",
+                    "root element is not <sdf>; is this an SDF model?");
+  check_includes(root, source_name, base_dir);
+  sdf::Root sroot;
+  const sdf::Errors errors =
+      sroot.LoadSdfString(xml, parser_config(base_dir.empty() ? std::string() : base_dir + "/x.sdf"));
+  if (!errors.empty()) fail_with(source_name, errors);
+  const sdf::Model* model = sroot.Model();
+  Eigen::Isometry3d world_pose = Eigen::Isometry3d::Identity();
+  if (!model && sroot.WorldCount() > 0) {
+    const sdf::World* w = sroot.WorldByIndex(0);
+    if (w->ModelCount() == 0) throw LoadError(source_name, 0, "sdf/world", "the world holds no model to spawn");
+    model = w->ModelByIndex(0);
+    ignition::math::Pose3d p;
+    model->SemanticPose().Resolve(p);
+    // convert_sdf_model composes the model's raw pose; an include's pose is in the world already
+    world_pose = to_iso(p) * to_iso(model->RawPose()).inverse();
+  }
+  if (!model) throw LoadError(source_name, root->GetLineNum(), "sdf", "no <model> in the document");
+  SdfRobot r = detail::convert_sdf_model(*model, source_name, options);
+  r.root_pose = world_pose * r.root_pose;
+  return r;
+}
+
+SdfRobot load_sdf_model_file(const std::string& path, const LoadOptions& options) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw LoadError(path, 0, "", "cannot open file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string dir = path.find('/') == std::string::npos ? "." : path.substr(0, path.rfind('/'));
+  return load_sdf_model_string(ss.str(), path, options, dir);
+}
+
+}  // namespace car_sim
