@@ -63,6 +63,14 @@ void flatten(const XmlRpc::XmlRpcValue& v, const std::string& key, car_sim::cont
   }
 }
 
+// A service with a typed callback (generic lambdas are ambiguous for advertiseService's overloads).
+template <class S, class F>
+ros::ServiceServer serve(ros::NodeHandle& nh, const std::string& name, F f) {
+  using Rq = typename S::Request;
+  using Rs = typename S::Response;
+  return nh.advertiseService<Rq, Rs>(name, boost::function<bool(Rq&, Rs&)>([f](Rq& rq, Rs& rs) { return f(rq, rs); }));
+}
+
 std::string join_ns(const std::string& a, const std::string& b) { return a.empty() ? "/" + b : "/" + a + "/" + b; }
 
 // One loaded controller's topics.
@@ -86,33 +94,32 @@ class RosControlAdapter : public Adapter {
     if (!rc_) return "";
     const std::string cm = join_ns(ns_, "controller_manager");
     auto& nh = node.nh();
-    srv_.push_back(nh.advertiseService<controller_manager_msgs::LoadController::Request,
-                                       controller_manager_msgs::LoadController::Response>(
-        cm + "/load_controller", [this](auto& rq, auto& rs) { rs.ok = load(rq.name); return true; }));
-    srv_.push_back(nh.advertiseService<controller_manager_msgs::UnloadController::Request,
-                                       controller_manager_msgs::UnloadController::Response>(
-        cm + "/unload_controller", [this](auto& rq, auto& rs) { rs.ok = unload(rq.name); return true; }));
-    srv_.push_back(nh.advertiseService<controller_manager_msgs::SwitchController::Request,
-                                       controller_manager_msgs::SwitchController::Response>(
-        cm + "/switch_controller", [this](auto& rq, auto& rs) {
-          rs.ok = switch_(rq);
-          return true;
-        }));
-    srv_.push_back(nh.advertiseService<controller_manager_msgs::ListControllers::Request,
-                                       controller_manager_msgs::ListControllers::Response>(
-        cm + "/list_controllers", [this](auto&, auto& rs) { list(&rs); return true; }));
-    srv_.push_back(nh.advertiseService<controller_manager_msgs::ListControllerTypes::Request,
-                                       controller_manager_msgs::ListControllerTypes::Response>(
-        cm + "/list_controller_types", [](auto&, auto& rs) {
-          for (const auto& t : car_sim::control::controller_types()) {
-            rs.types.push_back(t.name);
-            rs.base_classes.push_back(t.base_class);
-          }
-          return true;
-        }));
-    srv_.push_back(nh.advertiseService<controller_manager_msgs::ReloadControllerLibraries::Request,
-                                       controller_manager_msgs::ReloadControllerLibraries::Response>(
-        cm + "/reload_controller_libraries", [this](auto& rq, auto& rs) {
+    namespace cm_msgs = controller_manager_msgs;
+    srv_.push_back(serve<cm_msgs::LoadController>(nh, cm + "/load_controller", [this](auto& rq, auto& rs) {
+      rs.ok = load(rq.name);
+      return true;
+    }));
+    srv_.push_back(serve<cm_msgs::UnloadController>(nh, cm + "/unload_controller", [this](auto& rq, auto& rs) {
+      rs.ok = unload(rq.name);
+      return true;
+    }));
+    srv_.push_back(serve<cm_msgs::SwitchController>(nh, cm + "/switch_controller", [this](auto& rq, auto& rs) {
+      rs.ok = switch_(rq);
+      return true;
+    }));
+    srv_.push_back(serve<cm_msgs::ListControllers>(nh, cm + "/list_controllers", [this](auto&, auto& rs) {
+      list(&rs);
+      return true;
+    }));
+    srv_.push_back(serve<cm_msgs::ListControllerTypes>(nh, cm + "/list_controller_types", [](auto&, auto& rs) {
+      for (const auto& t : car_sim::control::controller_types()) {
+        rs.types.push_back(t.name);
+        rs.base_classes.push_back(t.base_class);
+      }
+      return true;
+    }));
+    srv_.push_back(serve<cm_msgs::ReloadControllerLibraries>(
+        nh, cm + "/reload_controller_libraries", [this](auto& rq, auto& rs) {
           rs.ok = reload(rq.force_kill);
           return true;
         }));
