@@ -163,7 +163,9 @@ void RosControl::configure(RobotHandle& robot) {
     }
   }
   // One motor per joint, capped by <limit effort> (none: unlimited, as Gazebo's SetPosition / SetParam("vel")).
-  for (const auto& j : joints_) motors_.push_back(robot.add_motor(j.index, 1e12));
+  // Effort-only joints get none: an idle Bullet motor (gains 0) still resists any change of velocity up to its cap.
+  for (const auto& j : joints_)
+    motors_.push_back(j.has(Interface::Position) || j.has(Interface::Velocity) ? robot.add_motor(j.index, 1e12) : -1);
   modes_.assign(joints_.size(), -1);
   read(robot);
   for (auto& j : joints_) j.cmd_position = j.position;
@@ -245,7 +247,7 @@ void RosControl::pre_physics(const StepContext& ctx, RobotHandle& robot) {
         break;
       }
     }
-    robot.set_motor(motors_[k], m);
+    if (motors_[k] >= 0) robot.set_motor(motors_[k], m);
   }
 }
 
