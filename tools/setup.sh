@@ -18,6 +18,8 @@ DEB_PACKAGES=(
   ros-message-generation ros-message-runtime python3-tf2-msgs libtf2-msgs-dev
   libvisualization-msgs-dev python3-visualization-msgs
   libtrajectory-msgs-dev python3-trajectory-msgs python3-genmsg python3-rosservice
+  libactionlib-dev python3-actionlib libactionlib-msgs-dev python3-actionlib-msgs ros-actionlib-msgs
+  python3-rosparam libstd-msgs-dev python3-std-msgs
   ros-robot-state-publisher joint-state-publisher rviz rosbash
   googletest python3-pytest
   chromium chromium-driver python3-selenium python3-pil

@@ -158,6 +158,21 @@ struct DroppedLink {
   int line = 0;
 };
 
+// A URDF <transmission> (transmission_interface's format, docs/COMPAT-control.md): the joints it moves and the
+// hardware interfaces each offers ("PositionJointInterface", prefix "hardware_interface/" removed).
+struct Transmission {
+  std::string name;
+  std::string type;  // e.g. "transmission_interface/SimpleTransmission"
+  struct JointEntry {
+    std::string joint;
+    std::vector<std::string> interfaces;
+  };
+  std::vector<JointEntry> joints;
+  std::vector<std::string> actuators;
+  double reduction = 1.0;  // [-] first actuator's <mechanicalReduction>
+  int line = 0;            // line of <transmission>
+};
+
 // A robot as the core sees it, with findings made while loading.
 struct RobotModel {
   std::string name;
@@ -173,6 +188,7 @@ struct RobotModel {
   std::vector<DroppedLink> dropped;
   std::set<std::string> preserved_fixed_joints;  // <gazebo reference=J><preserveFixedJoint> (or disable...)
   std::vector<std::string> world_joints;         // joints from the link `world`: the model is anchored
+  std::vector<Transmission> transmissions;       // URDF <transmission>s, as written (ros_control)
 
   const Link* find_link(const std::string& name) const;
   const Joint* find_joint(const std::string& name) const;

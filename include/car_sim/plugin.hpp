@@ -137,6 +137,11 @@ class RobotHandle {
   virtual Wrench joint_wrench(int joint) const = 0;
   // Contacts of a link's body (the rigid body it was merged into) during the last step, with a positive force.
   virtual std::vector<LinkContact> link_contacts(const std::string& link) const = 0;
+
+  // ---- ros_control (docs/COMPAT-control.md) ----
+  // Adds an effort [N m] or [N] on a joint for the coming step only (clamped to its <limit effort> when > 0).
+  // In pre_physics only.
+  virtual void add_joint_effort(int joint, double effort) = 0;
 };
 
 // What a plug-in may read of the world at a step.

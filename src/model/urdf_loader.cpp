@@ -397,6 +397,60 @@ class Loader {
 
 void parse_gazebo_extensions(const tinyxml2::XMLElement* robot, RobotModel* model);  // gazebo_ext.cpp
 
+namespace {
+
+// <transmission>s as transmission_interface's parser reads them: <type> (or the old type attribute), each
+// <joint name> with its <hardwareInterface>s, each <actuator name> (interfaces there are the old form: they
+// apply to the joints that name none) and its <mechanicalReduction>. Checked by the ros_control kind.
+void parse_transmissions(const tinyxml2::XMLElement* robot, RobotModel* model) {
+  auto text = [](const tinyxml2::XMLElement* e) {
+    std::string s = e && e->GetText() ? e->GetText() : "";
+    const auto b = s.find_first_not_of(" \t\r\n");
+    if (b == std::string::npos) return std::string();
+    return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
+  };
+  auto strip = [](std::string s) {
+    const std::string prefix = "hardware_interface/";
+    if (s.rfind(prefix, 0) == 0) s = s.substr(prefix.size());
+    return s;
+  };
+  for (auto* t = robot->FirstChildElement("transmission"); t; t = t->NextSiblingElement("transmission")) {
+    Transmission tr;
+    tr.name = t->Attribute("name") ? t->Attribute("name") : "";
+    tr.line = t->GetLineNum();
+    tr.type = text(t->FirstChildElement("type"));
+    if (tr.type.empty() && t->Attribute("type")) tr.type = t->Attribute("type");
+    std::vector<std::string> actuator_interfaces;
+    for (auto* a = t->FirstChildElement("actuator"); a; a = a->NextSiblingElement("actuator")) {
+      tr.actuators.push_back(a->Attribute("name") ? a->Attribute("name") : "");
+      for (auto* h = a->FirstChildElement("hardwareInterface"); h; h = h->NextSiblingElement("hardwareInterface"))
+        actuator_interfaces.push_back(strip(text(h)));
+      const auto* r = a->FirstChildElement("mechanicalReduction");
+      if (!r) r = t->FirstChildElement("mechanicalReduction");
+      if (r && tr.actuators.size() == 1) {
+        try {
+          tr.reduction = std::stod(text(r));
+        } catch (const std::exception&) {
+          model->diagnostics.push_back({Severity::Error, "bad_number",
+                                        "transmission[" + tr.name + "]/mechanicalReduction",
+                                        "'" + text(r) + "' is not a number", r->GetLineNum()});
+        }
+      }
+    }
+    for (auto* j = t->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint")) {
+      Transmission::JointEntry e;
+      e.joint = j->Attribute("name") ? j->Attribute("name") : "";
+      for (auto* h = j->FirstChildElement("hardwareInterface"); h; h = h->NextSiblingElement("hardwareInterface"))
+        e.interfaces.push_back(strip(text(h)));
+      if (e.interfaces.empty()) e.interfaces = actuator_interfaces;
+      tr.joints.push_back(e);
+    }
+    model->transmissions.push_back(tr);
+  }
+}
+
+}  // namespace
+
 RobotModel load_urdf_string(const std::string& xml, const std::string& source_name, const LoadOptions& options) {
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
@@ -435,6 +489,7 @@ RobotModel load_urdf_string(const std::string& xml, const std::string& source_na
   loader.check_fixed_axes(robot);
   loader.check_inertials();
   parse_gazebo_extensions(robot, &model);
+  parse_transmissions(robot, &model);
   // As sdformat's URDF reader: anchor to `world`, lump fixed joints, drop massless links on moving joints.
   detail::find_world_anchor(&model);
   if (options.lump_fixed_joints) {

@@ -28,6 +28,7 @@
 #include "hector_gps/hector_gps.hpp"
 #include "hector_imu/hector_imu.hpp"
 #include "multicamera/multicamera.hpp"
+#include "ros_control/ros_control.hpp"
 
 namespace car_sim {
 
@@ -58,6 +59,7 @@ const std::vector<const PluginKind*>& plugin_kinds() {
       &hector_gps_kind(),
       &hector_imu_kind(),
       &multicamera_kind(),
+      &ros_control_kind(),
   };
   return kinds;
 }

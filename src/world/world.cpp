@@ -55,6 +55,7 @@ struct World::Impl : WorldAccess {
       return body->add_motor(j, max_effort);
     }
     void set_motor(int motor, const MotorTarget& t) override { body->set_motor(motor, t); }
+    void add_joint_effort(int j, double effort) override { physics::add_joint_effort(*body, j, effort); }
     Eigen::Isometry3d link_pose(const std::string& l) const override { return body->link_pose(l); }
     ModelState link_state(const std::string& l) const override { return body->link_state(l); }
     ModelState root_state() const override { return body->root_state(); }

@@ -1,0 +1,105 @@
+// The controller types of car's ros_control layer (docs/COMPAT-control.md): what the ROS adapter may command and
+// the outputs each publishes. One file per type family: ctl_joint_state.cpp, ctl_joint.cpp (forward and PID
+// joint controllers, joint groups), ctl_diff_drive.cpp, ctl_trajectory.cpp; the type table in ctl_registry.cpp.
+#pragma once
+
+#include <optional>
+
+#include "ros_control.hpp"
+
+namespace car_sim {
+namespace control {
+
+// control_toolbox::Pid as the controllers use it: p, i, d, i_clamp (or i_clamp_min/i_clamp_max), antiwindup.
+struct Pid {
+  double p = 0, i = 0, d = 0, i_min = 0, i_max = 0;
+  bool antiwindup = false;
+  double i_term = 0, last_error = 0;
+  double p_term = 0, d_term = 0;
+  // Reads KEY/p, KEY/i, ... (prefix "pid" or "gains/JOINT"); p is required.
+  static Pid from(const ParamReader& r, const std::string& prefix);
+  // error, its derivative [per s], dt [s] -> command
+  double compute(double error, double error_dot, double dt);
+  void reset() { i_term = last_error = p_term = d_term = 0; }
+};
+
+// joint_states of joint_state_controller: every transmission joint (and extra_joints).
+struct JointStatesOutput : ControllerOutput {
+  std::vector<std::string> names;
+  std::vector<double> position, velocity, effort;
+  void visit(FieldVisitor& v) const override;
+};
+
+// control_msgs/JointControllerState of the PID joint controllers.
+struct JointControllerStateOutput : ControllerOutput {
+  double set_point = 0, process_value = 0, process_value_dot = 0, error = 0, time_step = 0, command = 0;
+  Pid pid;
+  void visit(FieldVisitor& v) const override;
+};
+
+// diff_drive_controller's odometry: pose and twist of base_frame_id in odom_frame_id.
+struct DiffDriveOdometryOutput : ControllerOutput {
+  std::string odom_frame, base_frame;
+  bool tf = true;
+  double x = 0, y = 0, heading = 0;   // [m], [rad], odom frame
+  double linear = 0, angular = 0;     // [m/s], [rad/s], base frame
+  double pose_cov[6] = {0}, twist_cov[6] = {0};
+  void visit(FieldVisitor& v) const override;
+};
+
+// joint_trajectory_controller's state: desired, actual and error per joint.
+struct TrajectoryStateOutput : ControllerOutput {
+  std::vector<std::string> joints;
+  std::vector<double> desired_position, desired_velocity, actual_position, actual_velocity;
+  void visit(FieldVisitor& v) const override;
+};
+
+// A FollowJointTrajectory goal's end, for the action server.
+struct TrajectoryResultOutput : ControllerOutput {
+  uint64_t goal = 0;
+  int error_code = 0;  // control_msgs/FollowJointTrajectoryResult codes
+  std::string error_string;
+  void visit(FieldVisitor& v) const override;
+};
+
+// Controllers that take a command (the adapter's subscribers call these between steps).
+class CommandController : public Controller {
+ public:
+  // std_msgs/Float64 (one joint) or Float64MultiArray (a group): one value per joint, in `joints()` order.
+  virtual bool set_command(const std::vector<double>& values, std::string* why) = 0;
+  virtual std::vector<std::string> joints() const = 0;
+};
+
+class DiffDriveController : public Controller {
+ public:
+  // geometry_msgs/Twist: linear.x [m/s], angular.z [rad/s], received at sim time `time` [s].
+  virtual void set_twist(double linear, double angular, double time) = 0;
+};
+
+// One trajectory point as trajectory_msgs/JointTrajectoryPoint has it (empty vectors: not given).
+struct TrajPoint {
+  std::vector<double> positions, velocities, accelerations;
+  double time_from_start = 0;  // [s]
+};
+
+struct TrajGoal {
+  std::vector<std::string> joint_names;
+  std::vector<TrajPoint> points;
+  double start_time = 0;  // [s] sim time (header.stamp; 0 = now)
+  // FollowJointTrajectory tolerances by joint name: position (0: unchecked; < 0: none)
+  std::map<std::string, double> path_position, goal_position;
+  std::optional<double> goal_time_tolerance;  // [s]
+};
+
+class TrajectoryController : public Controller {
+ public:
+  // A new trajectory replaces the current one from its start (`command` topic: goal_id 0). Returns false with
+  // the reason (control_msgs INVALID_GOAL / INVALID_JOINTS code in *code) when refused.
+  virtual bool set_trajectory(const TrajGoal& goal, uint64_t goal_id, double now, std::string* why, int* code) = 0;
+  // Cancel an action goal: stop (hold the current position, ramping over stop_trajectory_duration).
+  virtual void cancel(uint64_t goal_id, double now) = 0;
+  virtual std::vector<std::string> joints() const = 0;
+};
+
+}  // namespace control
+}  // namespace car_sim

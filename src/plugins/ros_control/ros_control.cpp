@@ -1,0 +1,399 @@
+// libgazebo_ros_control.so: transmissions -> joint interfaces, and the controller manager (docs/COMPAT-control.md).
+#include "ros_control.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "car_sim/diagnostics.hpp"
+
+namespace car_sim {
+namespace control {
+
+ControllerError::ControllerError(const std::string& controller, const std::string& key, const std::string& reason)
+    : std::runtime_error("controller '" + controller + "': " + (key.empty() ? "" : key + ": ") + reason) {}
+
+const char* to_string(Interface i) {
+  switch (i) {
+    case Interface::Position: return "hardware_interface/PositionJointInterface";
+    case Interface::Velocity: return "hardware_interface/VelocityJointInterface";
+    case Interface::Effort: return "hardware_interface/EffortJointInterface";
+  }
+  return "";
+}
+
+bool JointIo::has(Interface i) const { return std::find(interfaces.begin(), interfaces.end(), i) != interfaces.end(); }
+
+bool ParamReader::has(const std::string& key) const { return p_.count(key) > 0; }
+
+void ParamReader::fail(const std::string& key, const std::string& reason) const {
+  throw ControllerError(name_, key, reason);
+}
+
+std::string ParamReader::text(const std::string& key) const {
+  const auto it = p_.find(key);
+  if (it == p_.end()) fail(key, "missing (required key)");
+  if (it->second.size() != 1) fail(key, "expected one value, got a list");
+  return it->second[0];
+}
+
+std::string ParamReader::text(const std::string& key, const std::string& def) const {
+  return has(key) ? text(key) : def;
+}
+
+static double to_number(const ParamReader& r, const std::string& key, const std::string& v) {
+  try {
+    size_t used = 0;
+    const double d = std::stod(v, &used);
+    if (used != v.size() || !std::isfinite(d)) throw std::invalid_argument(v);
+    return d;
+  } catch (const std::exception&) {
+    r.fail(key, "'" + v + "' is not a finite number");
+  }
+}
+
+double ParamReader::number(const std::string& key) const { return to_number(*this, key, text(key)); }
+double ParamReader::number(const std::string& key, double def) const { return has(key) ? number(key) : def; }
+
+bool ParamReader::flag(const std::string& key, bool def) const {
+  if (!has(key)) return def;
+  bool v = false;
+  if (!parse_flag(text(key), &v)) fail(key, "'" + text(key) + "' is not a boolean");
+  return v;
+}
+
+std::vector<std::string> ParamReader::list(const std::string& key) const {
+  const auto it = p_.find(key);
+  if (it == p_.end()) fail(key, "missing (required key)");
+  return it->second;
+}
+
+std::vector<double> ParamReader::numbers(const std::string& key) const {
+  std::vector<double> out;
+  for (const auto& v : list(key)) out.push_back(to_number(*this, key, v));
+  return out;
+}
+
+const ControllerType* find_controller_type(const std::string& name) {
+  for (const auto& t : controller_types())
+    if (t.name == name) return &t;
+  return nullptr;
+}
+
+}  // namespace control
+
+using control::ControllerError;
+using control::Interface;
+
+namespace {
+
+constexpr ParamType T = ParamType::Text;
+constexpr ParamType N = ParamType::Number;
+constexpr ParamType B = ParamType::Flag;
+
+bool parse_interface(const std::string& s, Interface* i) {
+  if (s == "PositionJointInterface") *i = Interface::Position;
+  else if (s == "VelocityJointInterface") *i = Interface::Velocity;
+  else if (s == "EffortJointInterface") *i = Interface::Effort;
+  else return false;
+  return true;
+}
+
+// Transmissions checked against the model, as gazebo_ros_control's DefaultRobotHWSim: a joint must exist and move;
+// its interface must be one car simulates.
+void finish(ResolveContext& ctx) {
+  const RobotModel& m = ctx.model();
+  if (ctx.config().number("controlPeriod") < 0) ctx.fail("controlPeriod", "must be >= 0");
+  for (const auto& t : m.transmissions) {
+    const std::string where = "transmission[" + t.name + "]";
+    if (t.joints.empty()) throw LoadError(m.source, t.line, where, "has no <joint>");
+    for (const auto& j : t.joints) {
+      const std::string at = where + "/joint[" + j.joint + "]";
+      const Joint* joint = m.find_joint(j.joint);
+      if (!joint) throw LoadError(m.source, t.line, at, "no joint '" + j.joint + "' in the model");
+      if (joint->type == JointType::Fixed)
+        throw LoadError(m.source, t.line, at, "joint '" + j.joint + "' is fixed; ros_control cannot drive it");
+      if (j.interfaces.empty())
+        throw LoadError(m.source, t.line, at + "/hardwareInterface", "no <hardwareInterface> on the joint or actuator");
+      for (const auto& s : j.interfaces) {
+        Interface i;
+        if (!parse_interface(s, &i))
+          throw LoadError(m.source, t.line, at + "/hardwareInterface",
+                          "'" + s + "' is not simulated by car (Position-, Velocity- or EffortJointInterface)");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+RosControlConfig RosControlConfig::from(const PluginConfig& c) {
+  RosControlConfig r;
+  r.plugin_name = c.name;
+  r.robot_namespace = c.text("robotNamespace");
+  r.robot_sim_type = c.text("robotSimType");
+  r.control_period = c.number("controlPeriod");
+  r.legacy_mode_ns = c.flag("legacyModeNS");
+  return r;
+}
+
+RosControl::RosControl(const PluginConfig& c) : cfg_(RosControlConfig::from(c)) {}
+
+void RosControl::configure(RobotHandle& robot) {
+  model_ = &robot.model();
+  for (const auto& t : model_->transmissions) {
+    for (const auto& e : t.joints) {
+      control::JointIo io;
+      io.name = e.joint;
+      io.index = robot.joint(e.joint);
+      io.joint = model_->find_joint(e.joint);
+      for (const auto& s : e.interfaces) {
+        Interface i;
+        if (parse_interface(s, &i)) io.interfaces.push_back(i);
+      }
+      if (io.index < 0) continue;  // merged away (a joint of a dropped link)
+      auto same = std::find_if(joints_.begin(), joints_.end(), [&](const auto& j) { return j.name == io.name; });
+      if (same != joints_.end()) {
+        for (auto i : io.interfaces)
+          if (!same->has(i)) same->interfaces.push_back(i);
+        continue;
+      }
+      joints_.push_back(io);
+    }
+  }
+  // One motor per joint, capped by <limit effort> (none: unlimited, as Gazebo's SetPosition / SetParam("vel")).
+  // Effort-only joints get none: an idle Bullet motor (gains 0) still resists any change of velocity up to its cap.
+  for (const auto& j : joints_)
+    motors_.push_back(j.has(Interface::Position) || j.has(Interface::Velocity) ? robot.add_motor(j.index, 1e12) : -1);
+  modes_.assign(joints_.size(), -1);
+  read(robot);
+  for (auto& j : joints_) j.cmd_position = j.position;
+}
+
+// A world reset keeps the controllers (running ones keep running, as in Gazebo); commands start again from the
+// spawn pose: position commands hold it, velocity and effort commands are 0.
+void RosControl::reset() {
+  first_ = true;
+  for (auto& j : joints_) j.cmd_velocity = j.cmd_effort = 0.0;
+}
+
+void RosControl::read(const RobotHandle& robot) {
+  for (auto& j : joints_) {
+    j.position = robot.joint_position(j.index);
+    j.velocity = robot.joint_velocity(j.index);
+  }
+  root_ = robot.root_state();
+}
+
+control::ControlTime RosControl::time_at(uint64_t tick, double dt) const {
+  control::ControlTime t;
+  t.tick = tick;
+  t.time = static_cast<double>(tick) * dt;
+  t.period = static_cast<double>(tick - last_update_) * dt;
+  return t;
+}
+
+void RosControl::pre_physics(const StepContext& ctx, RobotHandle& robot) {
+  dt_ = ctx.dt;
+  if (first_) {
+    // the control period in whole steps, as gazebo_ros_control (a period below the step is the step)
+    period_ticks_ = cfg_.control_period > 0 ? std::max<uint64_t>(1, std::llround(cfg_.control_period / ctx.dt)) : 1;
+    last_update_ = ctx.tick;
+    read(robot);
+    for (auto& j : joints_) j.cmd_position = j.position;
+    first_ = false;
+  }
+  if (ctx.tick - last_update_ >= period_ticks_) {
+    read(robot);
+    const control::ControlTime t = time_at(ctx.tick, ctx.dt);
+    for (auto& l : loaded_)
+      if (l.running) l.controller->update(t);
+    last_update_ = ctx.tick;
+  }
+  // write: every step (efforts last one step; motor targets stay)
+  for (size_t k = 0; k < joints_.size(); ++k) {
+    control::JointIo& j = joints_[k];
+    const Interface mode = modes_[k] >= 0 ? static_cast<Interface>(modes_[k]) : j.interfaces.front();
+    MotorTarget m;
+    m.kd = 0.0;
+    m.kp = 0.0;
+    const double limit = j.joint && j.joint->limits && j.joint->limits->effort > 0 ? j.joint->limits->effort : 0.0;
+    switch (mode) {
+      case Interface::Position: {
+        double p = j.cmd_position;
+        // a revolute or prismatic joint's command is clamped to its <limit lower upper>, as joint_limits_interface
+        if (j.joint && j.joint->limits && j.joint->type != JointType::Continuous &&
+            j.joint->limits->lower < j.joint->limits->upper)
+          p = std::clamp(p, j.joint->limits->lower, j.joint->limits->upper);
+        m.position = p;
+        m.kp = 1.0;
+        m.kd = 1.0;
+        m.velocity = 0.0;
+        j.effort = 0.0;
+        break;
+      }
+      case Interface::Velocity:
+        m.velocity = j.cmd_velocity;
+        m.kd = 1.0;
+        j.effort = 0.0;
+        break;
+      case Interface::Effort: {
+        double e = j.cmd_effort;
+        if (limit > 0) e = std::clamp(e, -limit, limit);
+        if (!std::isfinite(e)) e = 0.0;
+        robot.add_joint_effort(j.index, e);
+        j.effort = e;
+        break;
+      }
+    }
+    if (motors_[k] >= 0) robot.set_motor(motors_[k], m);
+  }
+}
+
+void RosControl::post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) {
+  bool any = false;
+  for (const auto& l : loaded_) any = any || l.running;
+  if (!any) return;
+  read(robot);
+  control::ControlTime t;
+  t.tick = ctx.tick;
+  t.time = ctx.time();
+  t.period = ctx.dt;
+  for (auto& l : loaded_)
+    if (l.running) l.controller->publish(t, out);
+}
+
+control::JointIo& RosControl::claim(const std::string& controller, const std::string& key, const std::string& joint,
+                                    Interface i) {
+  for (auto& j : joints_) {
+    if (j.name != joint) continue;
+    if (!j.has(i))
+      throw ControllerError(controller, key,
+                            "joint '" + joint + "' has no " + to_string(i) + " in its <transmission>");
+    return j;
+  }
+  if (model_ && model_->find_joint(joint))
+    throw ControllerError(controller, key, "joint '" + joint + "' has no <transmission>; ros_control cannot reach it");
+  throw ControllerError(controller, key, "no joint '" + joint + "' in the robot");
+}
+
+control::Controller* RosControl::controller(const std::string& name) {
+  for (auto& l : loaded_)
+    if (l.name == name) return l.controller.get();
+  return nullptr;
+}
+
+void RosControl::load(const std::string& name, const std::string& type, const control::Params& params) {
+  if (controller(name)) throw ControllerError(name, "", "a controller of that name is already loaded");
+  const control::ControllerType* t = control::find_controller_type(type);
+  if (!t) {
+    std::string known;
+    for (const auto& k : control::controller_types()) known += (known.empty() ? "" : ", ") + k.name;
+    throw ControllerError(name, "type", "unknown controller type '" + type + "' (car knows " + known + ")");
+  }
+  auto c = t->make();
+  c->configure(control::ParamReader(name, params), *this);
+  loaded_.push_back({name, type, false, std::move(c)});
+}
+
+void RosControl::unload(const std::string& name) {
+  const auto it = std::find_if(loaded_.begin(), loaded_.end(), [&](const Loaded& l) { return l.name == name; });
+  if (it == loaded_.end()) throw ControllerError(name, "", "not loaded");
+  if (it->running) throw ControllerError(name, "", "still running; stop it first");
+  loaded_.erase(it);
+}
+
+bool RosControl::switch_controllers(const std::vector<std::string>& start, const std::vector<std::string>& stop,
+                                    bool strict, std::string* why) {
+  auto find = [&](const std::string& n) -> Loaded* {
+    for (auto& l : loaded_)
+      if (l.name == n) return &l;
+    return nullptr;
+  };
+  std::vector<Loaded*> to_start, to_stop;
+  for (const auto& n : stop) {
+    Loaded* l = find(n);
+    if (!l || !l->running) {
+      const std::string r = "controller '" + n + "': " + (l ? "not running" : "not loaded") + ", cannot stop it";
+      if (strict) { *why = r; return false; }
+      continue;
+    }
+    to_stop.push_back(l);
+  }
+  for (const auto& n : start) {
+    Loaded* l = find(n);
+    if (!l || (l->running && std::find(to_stop.begin(), to_stop.end(), l) == to_stop.end())) {
+      const std::string r = "controller '" + n + "': " + (l ? "already running" : "not loaded") + ", cannot start it";
+      if (strict) { *why = r; return false; }
+      continue;
+    }
+    to_start.push_back(l);
+  }
+  // resource conflicts: a joint may be commanded by one running controller (joint_state_controller claims none)
+  std::map<std::string, std::string> owner;
+  for (auto& l : loaded_) {
+    const bool runs = (l.running && std::find(to_stop.begin(), to_stop.end(), &l) == to_stop.end());
+    if (!runs) continue;
+    for (const auto& [iface, js] : l.controller->claimed())
+      for (const auto& j : js) owner[j] = l.name;
+  }
+  for (Loaded* l : to_start) {
+    for (const auto& [iface, js] : l->controller->claimed())
+      for (const auto& j : js)
+        if (owner.count(j)) {
+          *why = "controller '" + l->name + "': joint '" + j + "' is already claimed by '" + owner[j] + "'";
+          return false;
+        }
+    for (const auto& [iface, js] : l->controller->claimed())
+      for (const auto& j : js) owner[j] = l->name;
+  }
+  const control::ControlTime t = time_at(last_update_, dt_);
+  for (Loaded* l : to_stop) {
+    l->controller->stopping(t);
+    l->running = false;
+  }
+  for (Loaded* l : to_start) {
+    l->controller->starting(t);
+    l->running = true;
+  }
+  // each joint follows the interface of the running controller that claims it
+  for (size_t k = 0; k < joints_.size(); ++k) modes_[k] = -1;
+  for (auto& l : loaded_) {
+    if (!l.running) continue;
+    for (const auto& [iface, js] : l.controller->claimed())
+      for (const auto& jn : js)
+        for (size_t k = 0; k < joints_.size(); ++k)
+          if (joints_[k].name == jn) {
+            Interface i = Interface::Effort;
+            for (Interface c : {Interface::Position, Interface::Velocity, Interface::Effort})
+              if (iface == to_string(c)) i = c;
+            modes_[k] = static_cast<int>(i);
+          }
+  }
+  return true;
+}
+
+const PluginKind& ros_control_kind() {
+  static const PluginKind k = [] {
+    PluginKind k;
+    k.name = "ros_control";
+    k.filenames = {"libgazebo_ros_control.so"};
+    k.schema = {
+        {"robotNamespace", T, "", ""},
+        {"controlPeriod", N, "0", "s"},
+        {"robotSimType", T, "gazebo_ros_control/DefaultRobotHWSim", ""},
+        {"legacyModeNS", B, "true", ""},
+    };
+    k.ignored = {{"robotParam", "car reads the robot it spawned, not robot_description"},
+                 {"eStopTopic", "not simulated"}};
+    k.finish = finish;
+    k.make = [](const PluginConfig& c, const std::string&, uint64_t) -> std::unique_ptr<Plugin> {
+      return std::make_unique<RosControl>(c);
+    };
+    return k;
+  }();
+  return k;
+}
+
+}  // namespace car_sim
