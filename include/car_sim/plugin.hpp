@@ -75,6 +75,9 @@ struct MotorTarget {
   double kd = 1.0;        // [-] velocity gain (1 = hold the target as a hard constraint, capped by the effort)
   double position = 0.0;  // [rad] or [m]
   double kp = 0.0;        // [-] fraction of the position error corrected per step (0 = none)
+  // false: the motor applies nothing (a joint driven by effort; an idle Bullet motor with gains 0 still resists any
+  // change of velocity up to its cap)
+  bool enabled = true;
 };
 
 // A force and a torque on a body (issue 11: wrench plug-ins, f3d, ft_sensor).

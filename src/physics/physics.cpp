@@ -408,6 +408,7 @@ class BulletRobot : public Robot {
     auto* m = new btMultiBodyJointMotor(mb_.get(), joint, 0, 0.0, max_effort * P_.options.dt);
     add_constraint(m);
     motors_.push_back(m);
+    motor_impulse_.push_back(max_effort * P_.options.dt);
     motor_joint_.push_back(j);
     return static_cast<int>(motors_.size()) - 1;
   }
@@ -420,6 +421,7 @@ class BulletRobot : public Robot {
     if (j->limits && j->limits->velocity > 0.0) v = std::clamp(v, -j->limits->velocity, j->limits->velocity);
     m->setVelocityTarget(v, t.kd);
     m->setPositionTarget(t.position, t.kp);
+    m->setMaxAppliedImpulse(t.enabled ? motor_impulse_.at(motor) : 0.0);
   }
 
   bool has_link(const std::string& link) const override { return tree_.body_of_link.count(link) > 0; }
@@ -508,6 +510,7 @@ class BulletRobot : public Robot {
   std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders_;
   std::vector<std::unique_ptr<btMultiBodyConstraint>> constraints_;  // joint limits and motors
   std::vector<btMultiBodyJointMotor*> motors_;
+  std::vector<double> motor_impulse_;         // motor id -> its cap [N s] or [N m s] per step
   std::map<std::string, int> joint_link_;     // non-fixed joint -> multibody link index
   std::vector<const Joint*> link_joint_;      // multibody link index -> its joint
   std::vector<const Joint*> motor_joint_;     // motor id -> its joint

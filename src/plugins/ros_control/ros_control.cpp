@@ -244,6 +244,7 @@ void RosControl::pre_physics(const StepContext& ctx, RobotHandle& robot) {
         if (!std::isfinite(e)) e = 0.0;
         robot.add_joint_effort(j.index, e);
         j.effort = e;
+        m.enabled = false;  // the joint's motor (it offers position or velocity too) lets the effort act alone
         break;
       }
     }

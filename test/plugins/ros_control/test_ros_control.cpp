@@ -47,11 +47,9 @@ TEST(RosControl, ReadsTransmissionsWithAndWithoutPrefix) {
                                                                                 "PositionJointInterface"}));
 }
 
-// DISABLED: known deviation, not fixed in this session. The arm's joints offer effort AND position, so each has a
-// Bullet joint motor; in effort mode that motor idles at gains 0 yet still resists velocity changes up to the
-// joint's effort limit, so the measured sag is 0.0068 rad instead of m g l / p = 0.0196 rad. Effort-only joints
-// get no motor (correct). Fix: remove/disable the motor's constraint row while the joint is in effort mode.
-TEST(RosControl, DISABLED_EffortPidHoldsAgainstGravityWithErrorMglOverP) {
+// The arm's joints offer effort AND position, so each has a Bullet joint motor; in effort mode it is switched off
+// (MotorTarget::enabled), else it would resist velocity changes up to the joint's effort limit.
+TEST(RosControl, EffortPidHoldsAgainstGravityWithErrorMglOverP) {
   // link2 folded straight (elbow held by a position controller): the shoulder carries 2 kg, centres of mass at
   // 0.5 m and 1.5 m: torque m g l = 1 * 9.81 * 0.5 + 1 * 9.81 * 1.5 = 19.62 N m at q = 0. With p only the steady
   // error is e = m g l cos(e) / p; p = 1000: e = 0.01962 rad (cos(e) = 0.9998 changes it by 4e-6).
