@@ -286,7 +286,7 @@ class ServicesApiTest(unittest.TestCase):
         self.assertTrue(p.success)
         self.assertAlmostEqual(p.time_step, DT)
         self.assertTrue(p.pause)
-        self.assertEqual(p.max_update_rate, 0.0)  # rtf 0: as fast as possible
+        self.assertEqual(p.max_update_rate, 1000.0)  # rtf 1 (services_api.test): 1000 steps of 1 ms per second
         self.assertEqual(p.ode_config.sor_pgs_iters, 10)
 
     def test_gravity_through_set_physics_properties(self):

@@ -43,6 +43,11 @@ class ZooRobot(unittest.TestCase):
         rospy.init_node('test_zoo_' + cls.robot)
         cls.log = Recorder('/rosout', Log)  # every node publishes here; rostest starts no rosout aggregator
         cls.log.wait_connected()
+        # /rosout has several publishers: wait for the simulator's own (the first to connect may be another node's,
+        # and a line logged before the simulator's connection is lost)
+        deadline = time.time() + 60
+        while '/gazebo' not in [c.callerid_pub for c in cls.log.sub.impl.connections] and time.time() < deadline:
+            time.sleep(0.05)
         cls.spawn = subprocess.run(['rosrun', 'car', 'spawn_model', '-urdf', '-param', 'robot_description',
                                     '-model', cls.robot] + SPAWN[cls.robot],
                                    stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
