@@ -18,5 +18,8 @@ total=${total:-0}; errors=${errors:-0}; failures=${failures:-0}; skipped=${skipp
 failed=$((errors + failures))
 echo "$((total - failed - skipped)) passed, $failed failed, $skipped skipped"
 if [ "$rc" -ne 0 ] || [ "$failed" -ne 0 ] || [ "$total" -eq 0 ]; then
+  # which tests failed, and the tail of each one's message (the summary above only counts them)
+  /usr/bin/python3 "$ROOT/tools/test_failures.py" build/test_results || true
+  echo "$((total - failed - skipped)) passed, $failed failed, $skipped skipped"
   exit 1
 fi

@@ -241,6 +241,10 @@ class WebScene:
         if fov_deg:
             cam.fov = math.radians(fov_deg)
 
+    def has_clients(self):
+        """Whether a browser is connected now."""
+        return len(self.server.get_clients()) > 0
+
     def stop(self):
         self.server.stop()
 

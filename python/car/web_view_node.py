@@ -3,6 +3,7 @@
   rosrun car web_view [_host:=127.0.0.1] [_port:=8080] [_world:=FILE] [_fixed_frame:=odom] [_cloud_budget:=20000]
                       [_robots:=NAME[,NAME...]] [_scan_topic:=/scan] [_cloud_topic:=/camera/depth/points]
                       [_image_topic:=/camera/rgb/image_raw] [_cmd_vel:=cmd_vel] [_rate:=10]
+                      [_cloud_rate:=2] [_image_rate:=5]
                       [_camera:="PX PY PZ LX LY LZ [FOV_DEG [UX UY UZ]]"]
 
 Reads robot_description (one robot, named by ~robots, default the first model /gazebo/model_states lists that is
@@ -10,13 +11,18 @@ not in the world file), poses every link from TF in the fixed frame, the world's
 ones follow /gazebo/model_states), /scan as points, the depth cloud (thinned to ~cloud_budget points), the colour
 image, /clock for sim time and the real-time factor; the drive panel publishes geometry_msgs/Twist on cmd_vel at
 ~rate while a command is live and calls /gazebo/pause_physics, /unpause_physics and /reset_world. It runs in its
-own process and drops frames (queue size 1, newest wins) so it never slows the simulation; browsers may come and go.
+own process and drops frames (queue size 1, newest wins); browsers may come and go.
+The simulator renders a sensor only while someone subscribes to it (as gazebo_ros's camera and depth plug-ins do),
+so the view subscribes to the sensor topics only while a browser is connected, and to the heavy ones (the depth
+cloud, the image) only long enough to take one message, at most ~cloud_rate / ~image_rate times per wall second:
+with no browser the simulation runs as without the view, with one it renders a few clouds a second, not every one.
 ~camera is the view every new browser starts with (position and look-at point in the fixed frame [m], vertical field
 of view [deg], image-up direction). The URL is printed and set as the parameter ~url.
 """
 from __future__ import annotations
 
 import math
+import os
 import struct
 import sys
 import threading
@@ -60,6 +66,51 @@ def image_rgb(msg):
     return None
 
 
+class Sampled:
+    """A subscription held only while wanted, taking at most one message per `period` wall seconds (period 0:
+    held continuously). Its own thread lets go of the topic as soon as a sampled message arrives, so the simulator
+    renders about one frame per sample, not every frame until the next poll."""
+
+    def __init__(self, topic, msg_type, period, **kw):
+        self.topic, self.msg_type, self.period, self.kw = topic, msg_type, period, kw
+        self.msg, self.wanted, self.got = None, False, False
+        self.cond = threading.Condition()
+        if topic:
+            threading.Thread(target=self._run, name='web_view ' + topic, daemon=True).start()
+
+    def _cb(self, msg):
+        with self.cond:
+            self.msg, self.got = msg, True
+            self.cond.notify_all()
+
+    def _run(self):
+        import rospy
+        while not rospy.is_shutdown():
+            with self.cond:
+                self.cond.wait_for(lambda: self.wanted, timeout=1.0)
+                if not self.wanted:
+                    continue
+                self.got = False
+            start = time.monotonic()
+            sub = rospy.Subscriber(self.topic, self.msg_type, self._cb, queue_size=1, **self.kw)
+            with self.cond:
+                if self.period > 0:
+                    self.cond.wait_for(lambda: self.got or not self.wanted)
+                else:
+                    self.cond.wait_for(lambda: not self.wanted)
+            sub.unregister()
+            time.sleep(max(0.0, start + self.period - time.monotonic()))
+
+    def poll(self, wanted):
+        """The newest message since the last poll (or None); `wanted` says whether to hold the topic."""
+        with self.cond:
+            msg, self.msg = self.msg, None
+            if wanted != self.wanted:
+                self.wanted = wanted
+                self.cond.notify_all()
+        return msg
+
+
 def replay_main(argv) -> int:
     """web_view --replay OUTDIR SCENARIO: car batch runs in the browser, without ROS."""
     import argparse
@@ -96,6 +147,10 @@ def main(argv=None) -> int:
     from car.web_view import WebScene
 
     rospy.init_node('web_view')
+    # a viewer yields the CPU to the simulation: on a busy machine the view drops frames, the simulation does not slow
+    nice = int(rospy.get_param('~nice', 10))
+    if nice > 0:
+        os.nice(nice)
     host, port = rospy.get_param('~host', '127.0.0.1'), int(rospy.get_param('~port', 8080))
     fixed = rospy.get_param('~fixed_frame', 'odom')
     world_file = rospy.get_param('~world', '')
@@ -130,11 +185,14 @@ def main(argv=None) -> int:
                 latest[key] = msg
         return cb
 
-    rospy.Subscriber(rospy.get_param('~scan_topic', '/scan'), LaserScan, keep('scan'), queue_size=1)
-    rospy.Subscriber(rospy.get_param('~cloud_topic', '/camera/depth/points'), PointCloud2, keep('cloud'),
-                     queue_size=1, buff_size=2 ** 25)
-    rospy.Subscriber(rospy.get_param('~image_topic', '/camera/rgb/image_raw'), Image, keep('image'), queue_size=1,
-                     buff_size=2 ** 24)
+    # sensors: only while a browser looks; the cloud and the image sampled (see the module's note)
+    sensors = {
+        'scan': Sampled(rospy.get_param('~scan_topic', '/scan'), LaserScan, 0.0),
+        'cloud': Sampled(rospy.get_param('~cloud_topic', '/camera/depth/points'), PointCloud2,
+                         1.0 / float(rospy.get_param('~cloud_rate', 2.0)), buff_size=2 ** 25),
+        'image': Sampled(rospy.get_param('~image_topic', '/camera/rgb/image_raw'), Image,
+                         1.0 / float(rospy.get_param('~image_rate', 5.0)), buff_size=2 ** 24),
+    }
     rospy.Subscriber('/clock', Clock, keep('clock'), queue_size=1)
     from gazebo_msgs.msg import ModelStates
     rospy.Subscriber('/gazebo/model_states', ModelStates, keep('states'), queue_size=1)
@@ -166,6 +224,11 @@ def main(argv=None) -> int:
         with lock:
             msgs = dict(latest)
             latest.clear()
+        looking = web.has_clients()
+        for key, sampled in sensors.items():
+            m = sampled.poll(looking)
+            if m is not None:
+                msgs[key] = m
         if robot is None:
             states = msgs.get('states')
             name = robots[0] if robots else next((n for n in (states.name if states else []) if n not in world_models),

@@ -277,7 +277,10 @@ void RayScene::cast(const Eigen::Vector3d& origin, const Eigen::Matrix3d& rotati
   const int packets = (n + 15) / 16;
   const float inf = std::numeric_limits<float>::infinity();
   const Impl& im = *impl_;
-#pragma omp parallel for schedule(static)
+  // Threads only for camera-sized batches (a 360-ray scan is cheaper than the fork and join); chunks of 64 packets
+  // handed out as threads come free, so a thread the OS runs late (a busy machine) does not hold the rest back.
+  // Each ray's result depends only on that ray: the output is the same for any thread count.
+#pragma omp parallel for schedule(dynamic, 64) if (packets >= 256)
   for (int p = 0; p < packets; ++p) {
     alignas(64) RTCRayHit16 rh;
     alignas(64) int valid[16];

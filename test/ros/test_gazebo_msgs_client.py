@@ -130,9 +130,11 @@ class GazeboMsgsClientTest(unittest.TestCase):
         sub = rospy.Subscriber('/clock', Clock, lambda m: stamps.append(m.clock.to_sec()))
         time.sleep(0.5)
         self.gz.step_until(0.5)
+        paused_at = self.gz.world().sim_time
         sub.unregister()
-        # every stamp while running is a whole number of 0.02 s periods, and most follow each other by one
-        running = sorted(set(s for s in stamps if s > 0.0))
+        # every stamp while running is a whole number of 0.02 s periods, and most follow each other by one (while
+        # paused, car repeats the paused time at 10 Hz of wall time, docs/COMPAT.md: that one is left out)
+        running = sorted(set(s for s in stamps if 0.0 < s and abs(s - paused_at) > 1e-9))
         self.assertGreater(len(running), 5)
         self.assertEqual([s for s in running if abs(s * 50 - round(s * 50)) > 1e-9], [])
         steps = [round(b - a, 6) for a, b in zip(running, running[1:])]

@@ -90,6 +90,14 @@ def wait_for(cond, timeout, what):
     raise AssertionError('timed out waiting for %s' % what)
 
 
+def sensor_subscriptions():
+    """The sensor topics /web_view subscribes to now, from the master."""
+    import rosgraph
+    _, subs, _ = rosgraph.Master('/test_web_view').getSystemState()
+    return sorted(t for t, nodes in subs if '/web_view' in nodes and t in ('/scan', '/camera/depth/points',
+                                                                           '/camera/rgb/image_raw'))
+
+
 class WebViewTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -100,6 +108,8 @@ class WebViewTest(unittest.TestCase):
         wait_for(lambda: cls.state(MODEL, '').success, 120, 'the car to spawn')
         cls.cmds = []
         rospy.Subscriber('/cmd_vel', Twist, cls.cmds.append)
+        time.sleep(2.0)  # the view's loop has run with no browser
+        cls.sensor_subs_before = sensor_subscriptions()
         cls.driver = browser()
         cls.driver.get(cls.url)
 
@@ -119,6 +129,10 @@ class WebViewTest(unittest.TestCase):
         px = px[np.abs(px - want).max(axis=1) <= 100]
         return (px.mean(axis=0), want) if len(px) >= 30 else None
 
+    def test_0_no_browser_no_sensor_subscriptions(self):
+        # the simulator renders a sensor only while someone subscribes: a view nobody looks at costs it nothing
+        self.assertEqual(self.sensor_subs_before, [])
+
     def test_1_car_is_drawn_where_the_simulation_says(self):
         centroid, want = wait_for(lambda: self.car_in_image(self.driver), 300, 'the car in the page')
         # 15 px = 0.15 m at this scale (f / 5.9 m = 88 px/m on a 600 px canvas): the centroid of the body and the
@@ -131,6 +145,8 @@ class WebViewTest(unittest.TestCase):
             px = magenta(img)
             return (px, rect) if len(px) >= 100 else None
         px, rect = wait_for(enough, 300, 'lidar points in the page')
+        # with a browser looking, the view holds the scan (the cloud and the image only for a sample at a time)
+        self.assertIn('/scan', sensor_subscriptions())
         # they lie on the walls around the car, not on the car: most farther than 0.5 m from it
         p = self.state(MODEL, '').pose.position
         f = (rect[3] / 2.0) / math.tan(math.radians(FOV_DEG) / 2.0) / CAM_HEIGHT
