@@ -27,6 +27,8 @@ from car.world_geometry import transform
 
 PLANE_SIZE = 40.0  # [m] planes are drawn as this square, 1 mm thick, top face on the plane
 SCAN_COLOUR = (255, 0, 255)  # lidar points: magenta, a colour no material of the seed world or car has
+# the odometry trail: green, apart from the seed car's orange and the scan's magenta
+TRAIL_COLOUR = (40, 190, 90)
 
 
 def _rgb(rgba):
@@ -216,7 +218,7 @@ class WebScene:
         if len(pts) >= 2:
             seg = np.array([[[a[0], a[1], 0.005], [b[0], b[1], 0.005]] for a, b in zip(pts[:-1], pts[1:])],
                            dtype=np.float32)
-            self.scene.add_line_segments('/trails/%s' % robot, seg, (230, 80, 20), thickness=0.02)
+            self.scene.add_line_segments('/trails/%s' % robot, seg, TRAIL_COLOUR, thickness=0.02)
 
     def set_scan(self, robot, points):
         """Lidar hits (N, 3) [m] in the fixed frame."""

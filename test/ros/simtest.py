@@ -73,6 +73,14 @@ def call(name, srv_type=Empty, *args):
     return rospy.ServiceProxy(name, srv_type)(*args)
 
 
+def sim_now():
+    """The simulator's own time [s], asked of it: it answers after every message already sent to it (a command
+    published with simtest.command included). rospy.get_time() can lag it by seconds at rtf 0 on a busy machine
+    (the test's /clock subscriber falls behind), so a start time taken from it may be before the command held."""
+    from gazebo_msgs.srv import GetWorldProperties
+    return call('/gazebo/get_world_properties', GetWorldProperties).sim_time
+
+
 def wait_for(what, condition, timeout=120.0):
     """Polls condition() until it is true (returned). The bound is wall time against a hang, not a speed limit:
     tests wait on conditions, never for a while."""

@@ -7,7 +7,7 @@ import rospy
 import rostest
 from nav_msgs.msg import Odometry
 
-from simtest import Recorder, command
+from simtest import Recorder, command, sim_now
 
 # ns_bot's diff drive: commandTopic cmd_vel, odometryTopic odom, no <robotNamespace> unless ns:= is given
 V = 0.2  # [m/s] commanded forward speed
@@ -34,7 +34,7 @@ class ZooNamespaces(unittest.TestCase):
         rec = Recorder(prefix + '/odom', Odometry)
         rec.wait_connected()
         command(V, 0.0, prefix + '/cmd_vel')
-        t0 = rospy.get_time()
+        t0 = sim_now()
         # 2 s of sim time: the wheels (5 N m each on a 2.4 kg robot) reach the commanded speed long before
         msgs = rec.until(t0 + 2.0)
         self.assertAlmostEqual(msgs[-1].twist.twist.linear.x, V, delta=0.02)

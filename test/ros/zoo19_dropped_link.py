@@ -11,7 +11,7 @@ import rostest
 from gazebo_msgs.srv import GetModelProperties, GetModelState
 from rosgraph_msgs.msg import Log
 
-from simtest import Recorder, call, wait_for
+from simtest import Recorder, call, sim_now, wait_for
 
 
 class DroppedLink(unittest.TestCase):
@@ -53,8 +53,8 @@ class DroppedLink(unittest.TestCase):
 
     def test_rest_of_the_robot_rests_on_the_ground(self):
         # the 0.2 m cube dropped from 0.15 m: base_link at z = 0.1 m once settled (2 s of sim time)
-        t0 = rospy.get_time()
-        wait_for('sim time %.1f' % (t0 + 2.0), lambda: rospy.get_time() >= t0 + 2.0)
+        t0 = sim_now()
+        wait_for('sim time %.1f' % (t0 + 2.0), lambda: sim_now() >= t0 + 2.0)
         s = call('/gazebo/get_model_state', GetModelState, 'flap_bot', '')
         self.assertTrue(s.success, s.status_message)
         self.assertAlmostEqual(s.pose.position.z, 0.1, delta=0.002)

@@ -14,7 +14,7 @@ import tf2_ros
 import yaml
 from nav_msgs.msg import Odometry
 
-from simtest import Recorder, command, fit_circle, lookup, wait_for, xy
+from simtest import Recorder, command, fit_circle, lookup, sim_now, wait_for, xy
 
 # Commands and the circle each gives, radius = v / w [m]
 V1, W1 = 0.2, 0.5    # r1: R = 0.4 m, counter-clockwise
@@ -48,7 +48,7 @@ class TwoRobots(unittest.TestCase):
         Returns (mover's odometry, still's odometry) of the recorded span."""
         command(0.0, 0.0, '/%s/cmd_vel' % still)
         pub = command(v, w, '/%s/cmd_vel' % mover)
-        t0 = rospy.get_time()
+        t0 = sim_now()
         self.odom[mover].until(t0 + 5.0)
         self.odom[still].until(t0 + 5.0)
         span = lambda r: [m for m in self.odom[r].msgs if t0 + 1.0 <= m.header.stamp.to_sec() <= t0 + 5.0]
