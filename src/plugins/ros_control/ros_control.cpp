@@ -126,6 +126,49 @@ void finish(ResolveContext& ctx) {
   }
 }
 
+// The links a joint moves: its child link and every link below it.
+std::vector<const Link*> links_below(const RobotModel& m, const Joint& j) {
+  std::vector<std::string> names{j.child};
+  for (size_t k = 0; k < names.size(); ++k)
+    for (const auto& c : m.joints)
+      if (c.parent == names[k]) names.push_back(c.child);
+  std::vector<const Link*> out;
+  for (const auto& n : names)
+    for (const auto& l : m.links)
+      if (l.name == n && l.inertial && l.inertial->mass > 0) out.push_back(&l);
+  return out;
+}
+
+// What the joint moves with every other joint locked, at the current pose: the inertia about its axis [kg m^2]
+// (revolute, continuous) or the mass [kg] (prismatic). Free joints below (and a free base) only make the
+// articulated inertia smaller, so this bounds it from above.
+double locked_inertia(const RobotHandle& robot, const Joint& j, const std::vector<const Link*>& links) {
+  Eigen::Isometry3d frame;
+  try {
+    frame = robot.link_pose(j.child);  // the child link's frame is the joint's frame
+  } catch (const std::exception&) {
+    return 0.0;
+  }
+  const Eigen::Vector3d axis = frame.linear() * j.axis, at = frame.translation();
+  double inertia = 0.0;
+  for (const Link* l : links) {
+    Eigen::Isometry3d com;
+    try {
+      com = robot.link_pose(l->name) * l->inertial->origin;
+    } catch (const std::exception&) {
+      continue;  // a link dropped by the loader
+    }
+    const double m = l->inertial->mass;
+    if (j.type == JointType::Prismatic) {
+      inertia += m;
+      continue;
+    }
+    const Eigen::Matrix3d I = com.linear() * l->inertial->inertia * com.linear().transpose();
+    inertia += axis.dot(I * axis) + m * (com.translation() - at).cross(axis).squaredNorm();
+  }
+  return inertia;
+}
+
 }  // namespace
 
 RosControlConfig RosControlConfig::from(const PluginConfig& c) {
@@ -166,6 +209,7 @@ void RosControl::configure(RobotHandle& robot) {
   // Effort-only joints get none: an idle Bullet motor (gains 0) still resists any change of velocity up to its cap.
   for (const auto& j : joints_)
     motors_.push_back(j.has(Interface::Position) || j.has(Interface::Velocity) ? robot.add_motor(j.index, 1e12) : -1);
+  for (const auto& j : joints_) subtree_.push_back(j.joint ? links_below(*model_, *j.joint) : std::vector<const Link*>{});
   modes_.assign(joints_.size(), -1);
   read(robot);
   for (auto& j : joints_) j.cmd_position = j.position;
@@ -226,10 +270,19 @@ void RosControl::pre_physics(const StepContext& ctx, RobotHandle& robot) {
         if (j.joint && j.joint->limits && j.joint->type != JointType::Continuous &&
             j.joint->limits->lower < j.joint->limits->upper)
           p = std::clamp(p, j.joint->limits->lower, j.joint->limits->upper);
-        m.position = p;
-        m.kp = 1.0;
+        // The motor asks for the error's velocity e / dt (on the command in one step), but no faster than the
+        // joint can still stop at the command braking at half its effort cap over its locked inertia I:
+        // sqrt(2 a |e|), a = 0.5 * effort / I. Without it the capped motor brakes only within one step's travel
+        // and swings around the command. Its velocity target is clamped to <limit velocity> (joint_limits_interface
+        // limits a position command's change per period by it, too).
+        const double e = p - robot.joint_position(j.index);  // [rad] or [m], now (j.position: last update)
+        double v = e / ctx.dt;
+        const double inertia = limit > 0 && j.joint ? locked_inertia(robot, *j.joint, subtree_[k]) : 0.0;
+        if (inertia > 0) v = std::copysign(std::min(std::abs(v), std::sqrt(2.0 * 0.5 * limit / inertia * std::abs(e))), e);
+        m.velocity = v;
         m.kd = 1.0;
-        m.velocity = 0.0;
+        m.kp = 0.0;
+        m.position = p;
         j.effort = 0.0;
         break;
       }

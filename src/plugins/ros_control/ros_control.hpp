@@ -166,6 +166,7 @@ class RosControl : public Plugin, public control::Hardware {
   const RobotModel* model_ = nullptr;
   std::vector<control::JointIo> joints_;
   std::vector<int> motors_;
+  std::vector<std::vector<const Link*>> subtree_;  // per joint: the links it moves (its child and below)
   std::vector<int> modes_;  // per joint: the Interface a running controller commands, -1: the first offered
   std::vector<Loaded> loaded_;
   ModelState root_;
