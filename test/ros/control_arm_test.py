@@ -12,7 +12,7 @@ from controller_manager_msgs.srv import ListControllers, SwitchController
 from sensor_msgs.msg import JointState
 from trajectory_msgs.msg import JointTrajectoryPoint
 
-from simtest import Recorder, call, wait_for
+from simtest import Recorder, call, sim_now, wait_for
 
 
 def states():
@@ -51,8 +51,9 @@ class ControlArmTest(unittest.TestCase):
         call('/gazebo/unpause_physics')
         wait_for('goal done', lambda: client.get_state() not in (0, 1))  # PENDING, ACTIVE
         self.assertEqual(client.get_result().error_code, FollowJointTrajectoryResult.SUCCESSFUL)
-        end = self.joints.msgs[-1]
-        # tolerance 0.02 rad (the goal tolerance in the YAML), at t >= 2 s
+        # tolerance 0.02 rad (the goal tolerance in the YAML), at t >= 2 s (the goal can finish before the first
+        # joint_states message of that time has reached this test: wait for it)
+        end = self.joints.until(2.0)[-1]
         self.assertAlmostEqual(end.position[end.name.index('shoulder')], 0.5, delta=0.02)
         self.assertAlmostEqual(end.position[end.name.index('elbow')], -0.5, delta=0.02)
 
@@ -60,13 +61,13 @@ class ControlArmTest(unittest.TestCase):
         # the trajectory controller hands both joints to the stopped ones (one strict switch): the elbow holds
         # -0.5 rad (position interface), the shoulder's PID (p 1000) holds its set point 0.5 rad less the sag
         # e = torque / p. Torque about the shoulder at q1 = 0.5 + e, q2 = -0.5 (link2 horizontal):
-        # 9.81 * (1 kg * 0.5 m * cos q1 + 1 kg * (1 m * cos q1 + 0.5 m * cos(q1 + q2))) = 17.69 N m -> e = 0.0177 rad
+        # 9.8 * (1 kg * 0.5 m * cos q1 + 1 kg * (1 m * cos q1 + 0.5 m * cos(q1 + q2))) = 17.67 N m -> e = 0.0177 rad
         ok = call('/arm/controller_manager/switch_controller', SwitchController,
                   ['shoulder_position_controller', 'elbow_position_controller'], ['arm_controller'], 2, False,
                   0.0).ok
         self.assertTrue(ok)
         self.assertEqual(states()['arm_controller'], 'stopped')
-        t = self.joints.msgs[-1].header.stamp.to_sec()
+        t = sim_now()
         self.assertAlmostEqual(self.position('shoulder', t + 5.0), 0.5 + 0.0177, delta=0.002)
         self.assertAlmostEqual(self.position('elbow', t + 5.0), -0.5, delta=0.002)
 

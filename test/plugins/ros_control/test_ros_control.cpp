@@ -12,7 +12,7 @@ using control::Params;
 
 namespace {
 
-constexpr double kG = 9.81;  // [m/s^2], the empty world's gravity
+constexpr double kG = 9.8;  // [m/s^2], the empty world's gravity (SDF default)
 
 std::unique_ptr<World> world_with(const std::string& file, const std::string& name) {
   auto w = std::make_unique<World>(empty_world());
@@ -51,7 +51,7 @@ TEST(RosControl, ReadsTransmissionsWithAndWithoutPrefix) {
 // (MotorTarget::enabled), else it would resist velocity changes up to the joint's effort limit.
 TEST(RosControl, EffortPidHoldsAgainstGravityWithErrorMglOverP) {
   // link2 folded straight (elbow held by a position controller): the shoulder carries 2 kg, centres of mass at
-  // 0.5 m and 1.5 m: torque m g l = 1 * 9.81 * 0.5 + 1 * 9.81 * 1.5 = 19.62 N m at q = 0. With p only the steady
+  // 0.5 m and 1.5 m: torque m g l = 1 * 9.8 * 0.5 + 1 * 9.8 * 1.5 = 19.6 N m at q = 0. With p only the steady
   // error is e = m g l cos(e) / p; p = 1000: e = 0.01962 rad (cos(e) = 0.9998 changes it by 4e-6).
   auto w = world_with("arm.urdf", "arm");
   RosControl& rc = manager(*w, "arm");
@@ -60,7 +60,7 @@ TEST(RosControl, EffortPidHoldsAgainstGravityWithErrorMglOverP) {
   rc.load("elbow_ctl", "position_controllers/JointPositionController", Params{{"joint", {"elbow"}}});
   start(rc, {"shoulder_ctl", "elbow_ctl"});
   w->step(5000);  // 5 s: the d-damped response settles
-  const double e = 2 * 1.0 * kG * 1.0 / 1000;  // 19.62 / 1000 (m g l = 9.81 * (0.5 + 1.5))
+  const double e = 2 * 1.0 * kG * 1.0 / 1000;  // 19.6 / 1000 (m g l = 9.8 * (0.5 + 1.5))
   EXPECT_NEAR(joint(*w, "arm", "shoulder"), e, 5e-4);  // sags towards +q (gravity's torque about +y)
   EXPECT_NEAR(joint(*w, "arm", "elbow"), 0.0, 1e-3);
 }
