@@ -3,11 +3,8 @@
 
 namespace car_ros {
 
-std::string plugin_namespace(const car_sim::PluginConfig& c) {
-  std::string ns = c.has("robotNamespace") ? c.text("robotNamespace") : "";
-  while (!ns.empty() && ns.front() == '/') ns.erase(ns.begin());
-  while (!ns.empty() && ns.back() == '/') ns.pop_back();
-  return ns;
+std::string plugin_namespace(const car_sim::PluginConfig& c, const std::string& model_name) {
+  return car_sim::plugin_robot_namespace(c, model_name);
 }
 
 }  // namespace car_ros

@@ -44,7 +44,8 @@ struct AdapterKind {
 // The adapter of a kind; nullptr when the kind has none (its outputs are not published).
 const AdapterKind* find_adapter(const std::string& kind);
 
-// A plug-in's <robotNamespace> as a namespace: leading and trailing '/' removed ("" = global).
-std::string plugin_namespace(const car_sim::PluginConfig& c);
+// A plug-in's namespace by its file's <robotNamespace> rule (absent, empty, explicit: docs/COMPAT-plugins.md
+// "Namespaces"): leading and trailing '/' removed ("" = global).
+std::string plugin_namespace(const car_sim::PluginConfig& c, const std::string& model_name);
 
 }  // namespace car_ros

@@ -1,5 +1,5 @@
-// The spawn service's namespace rule (gazebo_ros_api_plugin walkChildAddRobotNamespace, gazebo_ros_utils
-// GetRobotNamespace; docs/COMPAT-spawn.md) on a model with a robot-level plug-in and a sensor plug-in.
+// The spawn service's namespace rule (gazebo_ros_api_plugin walkChildAddRobotNamespace; docs/COMPAT-spawn.md)
+// on a model with a robot-level plug-in and a sensor plug-in.
 #include <gtest/gtest.h>
 
 #include "car_sim/model.hpp"
@@ -62,11 +62,11 @@ TEST(SpawnNamespace, EmptySpawnNamespaceAddsNothing) {
   EXPECT_EQ(ns_of(m.sensors[0].plugins[0]), "<none>");
 }
 
-TEST(SpawnNamespace, ExplicitlyEmptySensorNamespaceIsTheModelName) {
-  // GetRobotNamespace: present but empty -> the model name; a robot-level plug-in keeps "" (GazeboRos does the
-  // same fallback itself, see DiffDriveConfig::from)
+TEST(SpawnNamespace, ExplicitlyEmptyNamespaceIsKept) {
+  // the spawn neither replaces nor fills an empty value: each file reads it by its own rule when it loads
+  // (imu_sensor: "" + "/" = global; diff_drive: the model name; test_plugin_namespace.cpp)
   RobotModel m = robot("<robotNamespace></robotNamespace>", "<robotNamespace></robotNamespace>");
   apply_robot_namespace(&m, "/", "mybot");
   EXPECT_EQ(ns_of(m.plugins[0]), "");
-  EXPECT_EQ(ns_of(m.sensors[0].plugins[0]), "mybot");
+  EXPECT_EQ(ns_of(m.sensors[0].plugins[0]), "");
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "car_sim/plugins.hpp"
 #include "car_sim/sdf_model.hpp"
 #include "car_sim/world.hpp"
 #include "test_util.hpp"
@@ -279,12 +280,21 @@ TEST(SdfNamespace, AbsentIsInjectedAtSpawn) {
   EXPECT_EQ(ns_of(r.model.sensors[0].plugins[0]), "/r1/");
 }
 
-TEST(SdfNamespace, EmptyIsTheModelNameForSensorPlugins) {
+TEST(SdfNamespace, EmptyIsReadByEachFilesRule) {
   SdfRobot r = load_sdf_model_string(robot_with("<robotNamespace></robotNamespace>", "<robotNamespace></robotNamespace>"));
   apply_robot_namespace(&r.model, "/r1/", "bot");
-  EXPECT_EQ(ns_of(r.model.sensors[0].plugins[0]), "bot");
-  // a model plug-in keeps its empty value; GazeboRos reads empty as the model name when it resolves
+  // the spawn keeps an empty value; each file reads it (docs/COMPAT-plugins.md "Namespaces"): laser
+  // (GetRobotNamespace) -> the model name, p3d ("" + "/") -> global
+  EXPECT_EQ(ns_of(r.model.sensors[0].plugins[0]), "");
   EXPECT_EQ(ns_of(r.model.plugins[0]), "");
+  const ModelConfig mc = resolve_plugins(r.model);
+  int seen = 0;
+  for (const auto& c : mc.plugins) {
+    if (c.name != "laser" && c.name != "p3d") continue;
+    EXPECT_EQ(plugin_robot_namespace(c, "bot"), c.name == "laser" ? "bot" : "");
+    ++seen;
+  }
+  EXPECT_EQ(seen, 2);
 }
 
 TEST(SdfNamespace, ExplicitIsKept) {

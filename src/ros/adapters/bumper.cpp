@@ -33,10 +33,10 @@ geometry_msgs::Wrench wrench(const car_sim::Wrench& w) {
 
 class BumperAdapter : public Adapter {
  public:
-  std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo&, NodeContext& node) override {
+  std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
     frame_ = frame(p.config.text("frameName"));
     pub_ = node.nh().advertise<ContactsStateMsg>(
-        topic_in(plugin_namespace(p.config), p.config.text("bumperTopicName")), 1);
+        topic_in(plugin_namespace(p.config, robot.name), p.config.text("bumperTopicName")), 1);
     return pub_.getTopic() + " (link " + p.config.link + ", frame " + frame_ + ")";
   }
 

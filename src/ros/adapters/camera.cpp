@@ -8,8 +8,8 @@ namespace {
 
 class CameraAdapter : public Adapter {
  public:
-  std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo&, NodeContext& node) override {
-    return topics_.advertise(node.nh(), p.config);
+  std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
+    return topics_.advertise(node.nh(), p.config, robot.name);
   }
   bool listened() const override { return topics_.listened(); }
   void publish(const car_sim::Output& out, NodeContext& node) override {

@@ -95,10 +95,11 @@ sensor_msgs::PointCloud2 point_cloud(const car_sim::CameraOut& o, const std::str
   return pc;
 }
 
-std::string CameraTopics::advertise(ros::NodeHandle& nh, const car_sim::PluginConfig& c) {
+std::string CameraTopics::advertise(ros::NodeHandle& nh, const car_sim::PluginConfig& c,
+                                    const std::string& model_name) {
   cfg_ = c;
   frame_ = frame(c.text("frameName"));
-  base_ = plugin_namespace(c);
+  base_ = plugin_namespace(c, model_name);
   const std::string cam = frame(c.text("cameraName"));
   if (!cam.empty()) base_ = base_.empty() ? cam : base_ + "/" + cam;
   image_ = nh.advertise<sensor_msgs::Image>(topic_in(base_, c.text("imageTopicName")), 2);

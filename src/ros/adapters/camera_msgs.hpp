@@ -28,7 +28,7 @@ sensor_msgs::PointCloud2 point_cloud(const car_sim::CameraOut& o, const std::str
 class CameraTopics {
  public:
   // Returns the topics, for the log line.
-  std::string advertise(ros::NodeHandle& nh, const car_sim::PluginConfig& c);
+  std::string advertise(ros::NodeHandle& nh, const car_sim::PluginConfig& c, const std::string& model_name);
   bool listened() const;
   // Image (when subscribed) and camera_info (when due) of a frame; returns the frame's stamp.
   void publish(const car_sim::CameraOut& o, const ros::Time& stamp);

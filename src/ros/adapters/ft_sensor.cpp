@@ -12,10 +12,10 @@ namespace {
 
 class FtSensorAdapter : public Adapter {
  public:
-  std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo&, NodeContext& node) override {
+  std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
     frame_ = frame(p.config.link);
     pub_ = node.nh().advertise<geometry_msgs::WrenchStamped>(
-        topic_in(plugin_namespace(p.config), p.config.text("topicName")), 1);
+        topic_in(plugin_namespace(p.config, robot.name), p.config.text("topicName")), 1);
     return pub_.getTopic() + " (joint " + p.config.text("jointName") + ", frame " + frame_ + ")";
   }
 

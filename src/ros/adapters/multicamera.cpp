@@ -18,7 +18,7 @@ void set_param(car_sim::PluginConfig* c, const std::string& key, const std::stri
 
 class MultiCameraAdapter : public Adapter {
  public:
-  std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo&, NodeContext& node) override {
+  std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
     std::string topics;
     for (const char* side : {"left", "right"}) {
       if (p.config.text(std::string("camera[") + side + "]/@name").empty()) continue;
@@ -27,7 +27,7 @@ class MultiCameraAdapter : public Adapter {
       if (std::string(side) == "left") set_param(&c, "hackBaseline", "0");
       sides_.push_back(side);
       topics_.emplace_back();
-      topics += (topics.empty() ? "" : ", ") + topics_.back().advertise(node.nh(), c);
+      topics += (topics.empty() ? "" : ", ") + topics_.back().advertise(node.nh(), c, robot.name);
     }
     return topics;
   }

@@ -10,8 +10,8 @@ namespace {
 
 class KinectAdapter : public Adapter {
  public:
-  std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo&, NodeContext& node) override {
-    std::string topics = topics_.advertise(node.nh(), p.config);
+  std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
+    std::string topics = topics_.advertise(node.nh(), p.config, robot.name);
     const std::string& base = topics_.base();
     depth_ = node.nh().advertise<sensor_msgs::Image>(topic_in(base, p.config.text("depthImageTopicName")), 2);
     topics_.extra_info =

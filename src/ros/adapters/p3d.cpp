@@ -12,11 +12,11 @@ namespace {
 
 class P3dAdapter : public Adapter {
  public:
-  std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo&, NodeContext& node) override {
+  std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
     frame_ = frame(p.config.text("frameName"));
     body_ = p.config.text("bodyName");
     variance_ = p.config.number("gaussianNoise") * p.config.number("gaussianNoise");
-    pub_ = node.nh().advertise<nav_msgs::Odometry>(topic_in(plugin_namespace(p.config), p.config.text("topicName")), 100);
+    pub_ = node.nh().advertise<nav_msgs::Odometry>(topic_in(plugin_namespace(p.config, robot.name), p.config.text("topicName")), 100);
     return pub_.getTopic();
   }
 

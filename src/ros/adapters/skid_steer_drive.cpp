@@ -19,7 +19,7 @@ class SkidSteerAdapter : public Adapter {
   std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
     robot_ = robot.name;
     drive_ = dynamic_cast<car_sim::TwistDrive*>(node.world().plugin(robot.name, p.config.name));
-    const std::string ns = plugin_namespace(p.config);
+    const std::string ns = plugin_namespace(p.config, robot.name);
     odom_frame_ = frame(p.config.text("odometryFrame"));
     base_frame_ = frame(p.config.text("robotBaseFrame"));
     broadcast_tf_ = p.config.flag("broadcastTF");

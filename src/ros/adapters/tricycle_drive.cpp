@@ -21,9 +21,7 @@ class TricycleAdapter : public Adapter {
     drive_ = dynamic_cast<car_sim::TwistDrive*>(node.world().plugin(robot.name, p.config.name));
     model_ = &robot.model;
     name_ = p.config.name;
-    std::string ns = plugin_namespace(p.config);
-    if (ns.empty() && (p.config.param("robotNamespace").from_default || p.config.text("robotNamespace").empty()))
-      ns = robot.name;
+    const std::string ns = plugin_namespace(p.config, robot.name);
     odom_frame_ = frame(p.config.text("odometryFrame"));
     base_frame_ = frame(p.config.text("robotBaseFrame"));
     wheel_tf_ = p.config.flag("publishWheelTF");
