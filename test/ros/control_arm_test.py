@@ -49,7 +49,8 @@ class ControlArmTest(unittest.TestCase):
         goal.trajectory.points = [JointTrajectoryPoint(positions=[0.5, -0.5], time_from_start=rospy.Duration(2.0))]
         client.send_goal(goal)
         call('/gazebo/unpause_physics')
-        wait_for('goal done', lambda: client.get_state() not in (0, 1))  # PENDING, ACTIVE
+        # the result message, not only a terminal status (the status topic can say SUCCEEDED before it arrives)
+        wait_for('goal result', lambda: client.get_result() is not None)
         self.assertEqual(client.get_result().error_code, FollowJointTrajectoryResult.SUCCESSFUL)
         # tolerance 0.02 rad (the goal tolerance in the YAML), at t >= 2 s (the goal can finish before the first
         # joint_states message of that time has reached this test: wait for it)
