@@ -20,7 +20,9 @@ stop_busy() {
   for pid in "${busy[@]}"; do kill "$pid" 2>/dev/null; done
   busy=()
 }
-trap stop_busy EXIT INT TERM
+# stopped by a signal: stop the busy loops and the run in progress, then exit (a trap alone would go on)
+trap stop_busy EXIT
+trap 'stop_busy; pkill -P $$; exit 143' INT TERM
 for _ in $(seq "$BUSY"); do
   # a busy loop at nice 0: it competes with the simulator and the tests for every time slice
   nice -n 0 bash -c 'while :; do :; done' &
