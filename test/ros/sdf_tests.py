@@ -14,7 +14,7 @@ from gazebo_msgs.srv import GetModelState
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Image, LaserScan
 
-from simtest import Recorder, call, command, fit_circle, wait_for, xy
+from simtest import Recorder, call, command, fit_circle, sim_now, wait_for, xy
 
 DATA = os.path.join(rospkg.RosPack().get_path('car'), 'test', 'data', 'sdf')
 
@@ -49,8 +49,10 @@ class SdfFile(unittest.TestCase):
         # spawned from the root: the drive's robotNamespace is "/" (injected) -> /cmd_vel and /odom
         truth = Recorder('/gazebo/ground_truth/diff_bot', Odometry)
         truth.wait_connected()
-        t0 = truth.until(0.0)[-1].header.stamp.to_sec()
+        truth.until(0.0)
         command(0.2, 0.4)
+        # the simulator runs at rtf 0 while the command's connection is made: the start is its time after the command
+        t0 = sim_now()
         msgs = truth.until(t0 + 12.0)
         # after 2 s of spin-up, the points of the next 10 s lie on a circle of radius v / w = 0.2 / 0.4 = 0.5 m
         points = [xy(m) for m in msgs if t0 + 2.0 <= m.header.stamp.to_sec() <= t0 + 12.0]
