@@ -3,36 +3,18 @@
 
 #include <cmath>
 
-#include "car_sim/world.hpp"
-#include "ros_control/controllers.hpp"
-#include "test_util.hpp"
+#include "control_fixture.hpp"
 
 using namespace car_sim;
+using namespace car_sim::control_test;
 using control::Params;
 
 namespace {
-
-constexpr double kG = 9.8;  // [m/s^2], the empty world's gravity (SDF default)
-
-std::unique_ptr<World> world_with(const std::string& file, const std::string& name) {
-  auto w = std::make_unique<World>(empty_world());
-  w->spawn(load_urdf_file(data_path("control/" + file)), name, at(0, 0, 0));
-  return w;
-}
-
-RosControl& manager(World& w, const std::string& robot) {
-  return *dynamic_cast<RosControl*>(w.plugin(robot, "gazebo_ros_control"));
-}
 
 double joint(const World& w, const std::string& robot, const std::string& j) {
   for (const auto& s : w.joint_states(robot))
     if (s.name == j) return s.position;
   return NAN;
-}
-
-void start(RosControl& rc, const std::vector<std::string>& names) {
-  std::string why;
-  ASSERT_TRUE(rc.switch_controllers(names, {}, true, &why)) << why;
 }
 
 }  // namespace
