@@ -90,12 +90,16 @@ def wait_for(cond, timeout, what):
     raise AssertionError('timed out waiting for %s' % what)
 
 
-def sensor_subscriptions():
-    """The sensor topics /web_view subscribes to now, from the master."""
+def view_subscriptions():
+    """The topics /web_view subscribes to now, from the master."""
     import rosgraph
     _, subs, _ = rosgraph.Master('/test_web_view').getSystemState()
-    return sorted(t for t, nodes in subs if '/web_view' in nodes and t in ('/scan', '/camera/depth/points',
-                                                                           '/camera/rgb/image_raw'))
+    return [t for t, nodes in subs if '/web_view' in nodes]
+
+
+def sensor_subscriptions():
+    """The sensor topics /web_view subscribes to now."""
+    return sorted(t for t in view_subscriptions() if t in ('/scan', '/camera/depth/points', '/camera/rgb/image_raw'))
 
 
 class WebViewTest(unittest.TestCase):
@@ -108,7 +112,8 @@ class WebViewTest(unittest.TestCase):
         wait_for(lambda: cls.state(MODEL, '').success, 120, 'the car to spawn')
         cls.cmds = []
         rospy.Subscriber('/cmd_vel', Twist, cls.cmds.append)
-        time.sleep(2.0)  # the view's loop has run with no browser
+        # the view is in its loop (it subscribes to /gazebo/model_states just before it), with no browser yet
+        wait_for(lambda: '/gazebo/model_states' in view_subscriptions(), 120, "the view's model_states subscription")
         cls.sensor_subs_before = sensor_subscriptions()
         cls.driver = browser()
         cls.driver.get(cls.url)
