@@ -22,7 +22,7 @@ stop_busy() {
 }
 # stopped by a signal: stop the busy loops and the run in progress, then exit (a trap alone would go on)
 trap stop_busy EXIT
-trap 'stop_busy; pkill -P $$; exit 143' INT TERM
+trap 'stop_busy; [ -n "${suite:-}" ] && kill -TERM -- "-$suite" 2>/dev/null; pkill -P $$; exit 143' INT TERM
 for _ in $(seq "$BUSY"); do
   # a busy loop at nice 0: it competes with the simulator and the tests for every time slice
   nice -n 0 bash -c 'while :; do :; done' &
@@ -34,7 +34,14 @@ failed=0
 verdicts=()
 for i in $(seq "$N"); do
   t0=$SECONDS
-  bash tools/test.sh > "$LOGS/run-$i.log" 2>&1
+  # in the background and waited for: bash runs a trap only between commands, and `wait` is one it interrupts
+  # (a foreground suite would keep a TERM waiting until the suite ended)
+  # its own process group (set -m), so a signal stops the whole suite: catkin, rostest, the nodes
+  set -m
+  bash tools/test.sh > "$LOGS/run-$i.log" 2>&1 &
+  suite=$!
+  set +m
+  wait "$suite"
   rc=$?
   verdict="$(grep -E '^[0-9]+ passed, [0-9]+ failed, [0-9]+ skipped' "$LOGS/run-$i.log" | tail -n 1)"
   line="run $i/$N: ${verdict:-no verdict} (exit $rc, $((SECONDS - t0)) s, load $(cut -d' ' -f1-3 /proc/loadavg))"

@@ -48,6 +48,18 @@ class Recorder:
         raise AssertionError('no message at sim time %.3f within %.0f s' % (t, timeout))
 
 
+def wait_publisher(sub, node='/gazebo', timeout=300.0):
+    """Waits (wall time, a bound for a hang only) until node's publisher has connected to the rospy Subscriber
+    sub: a topic with several publishers (/rosout) connects them one at a time, and what node sends before its
+    own connection is lost."""
+    import time
+    deadline = time.time() + timeout
+    while node not in [c.callerid_pub for c in sub.impl.connections]:
+        if time.time() > deadline:
+            raise AssertionError('%s has not connected to %s within %.0f s' % (node, sub.name, timeout))
+        time.sleep(0.05)
+
+
 def command(v, w, topic='/cmd_vel'):
     """A latched cmd_vel publisher that has reached the simulator.
 

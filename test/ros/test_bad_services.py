@@ -14,7 +14,7 @@ from rosgraph_msgs.msg import Log
 
 from gazebo_services import (DeleteModel, GetModelState, GetWorldProperties, ModelState, ModelStates,
                              SetModelState, SpawnModel)
-from simtest import call, command
+from simtest import call, command, wait_publisher
 
 BAD = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), 'data', 'bad')
 
@@ -109,10 +109,12 @@ class BadServicesTest(unittest.TestCase):
         states, logs = [], []
         sub = rospy.Subscriber('/gazebo/model_states', ModelStates, states.append, queue_size=None)
         log_sub = rospy.Subscriber('/rosout', Log, logs.append, queue_size=None)
+        # the simulator's own /rosout connection first: the error comes a few steps after unpausing
+        wait_publisher(log_sub)
         self.assertTrue(self.spawn('car_huge', xml, '', pose(z=0.05), '').success)
         call('/gazebo/unpause_physics')
         # the node logs the body and pauses itself
-        deadline = time.time() + 120
+        deadline = time.time() + 300
         while not [m for m in logs if 'is not finite; the world stops here' in m.msg]:
             self.assertLess(time.time(), deadline, 'no error logged')
             time.sleep(0.05)

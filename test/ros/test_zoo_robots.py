@@ -15,7 +15,7 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import Image
 
-from simtest import Recorder, call
+from simtest import Recorder, call, wait_publisher
 
 # spawn_model arguments per robot: each rests on (or is fixed above) the ground plane at z = 0
 SPAWN = {
@@ -45,15 +45,13 @@ class ZooRobot(unittest.TestCase):
         cls.log.wait_connected()
         # /rosout has several publishers: wait for the simulator's own (the first to connect may be another node's,
         # and a line logged before the simulator's connection is lost)
-        deadline = time.time() + 60
-        while '/gazebo' not in [c.callerid_pub for c in cls.log.sub.impl.connections] and time.time() < deadline:
-            time.sleep(0.05)
+        wait_publisher(cls.log.sub)
         cls.spawn = subprocess.run(['rosrun', 'car', 'spawn_model', '-urdf', '-param', 'robot_description',
                                     '-model', cls.robot] + SPAWN[cls.robot],
                                    stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
                                    timeout=120)
 
-    def logged(self, text, timeout=30.0):
+    def logged(self, text, timeout=120.0):
         """The simulator's log line that contains text (waits for it to arrive through /rosout)."""
         deadline = time.time() + timeout
         while time.time() < deadline:

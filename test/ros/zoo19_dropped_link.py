@@ -11,7 +11,7 @@ import rostest
 from gazebo_msgs.srv import GetModelProperties, GetModelState
 from rosgraph_msgs.msg import Log
 
-from simtest import Recorder, call, sim_now, wait_for
+from simtest import Recorder, call, sim_now, wait_for, wait_publisher
 
 
 class DroppedLink(unittest.TestCase):
@@ -19,7 +19,8 @@ class DroppedLink(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node('zoo19_dropped_link')
         cls.log = Recorder('/rosout', Log)  # rostest starts no rosout aggregator: every node publishes here
-        cls.log.wait_connected()
+        # the simulator's own /rosout connection (what it logs before that is lost)
+        wait_publisher(cls.log.sub)
         cls.spawn = subprocess.run(['rosrun', 'car', 'spawn_model', '-urdf', '-param', 'robot_description',
                                     '-model', 'flap_bot', '-z', '0.15'],
                                    stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
