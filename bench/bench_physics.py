@@ -152,9 +152,24 @@ def core_sensors(threads):
     return vals
 
 
+def core_many(seconds=3.0):
+    """bench_many: the largest number of seed cars (lidar 5.5 Hz computing, diff drive commanded) that one
+    process steps at >= 1x real time, and the factor at each N it tried."""
+    exe = os.path.join(ROOT, '.ws', 'devel', 'lib', 'car', 'bench_many')
+    out = subprocess.run([exe, URDF, str(seconds)], capture_output=True, text=True, check=True).stdout
+    tried = {}
+    for line in out.splitlines():
+        if line.startswith('cars'):
+            n, x = line.split(':')
+            tried[int(n.split()[1])] = float(x.split('x')[0])
+        elif line.startswith('many:'):
+            best = int(line.split()[1])
+    return best, tried
+
+
 def ros_node(seconds, cloud=False):
-    """sim.launch at rtf 0: steps per wall second. With cloud, a subscriber on /camera/depth/points (and
-    /scan) keeps the lidar and the Kinect (20 Hz) computing and publishing."""
+    """sim.launch at rtf 0 with /odom subscribed: steps per wall second. With cloud, a subscriber on
+    /camera/depth/points (and /scan) keeps the lidar and the Kinect (20 Hz) computing and publishing."""
     env = dict(os.environ, ROS_MASTER_URI='http://localhost:11399')
     launch = subprocess.Popen(['roslaunch', '-p', '11399', 'car', 'sim.launch', 'rtf:=0'], env=env,
                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -169,12 +184,14 @@ def ros_node(seconds, cloud=False):
         while not get('mycar', '').success:
             time.sleep(0.1)
 
-        subs = []
+        # /odom subscribed, as a user's nav stack would (the diff drive publishes it at its updateRate)
+        from nav_msgs.msg import Odometry
+        subs = [rospy.Subscriber('/odom', Odometry, lambda m: None, queue_size=1)]
         if cloud:
             from sensor_msgs.msg import LaserScan, PointCloud2
-            subs = [rospy.Subscriber('/camera/depth/points', PointCloud2, lambda m: None, queue_size=1),
-                    rospy.Subscriber('/scan', LaserScan, lambda m: None, queue_size=1)]
-            time.sleep(1.0)
+            subs += [rospy.Subscriber('/camera/depth/points', PointCloud2, lambda m: None, queue_size=1),
+                     rospy.Subscriber('/scan', LaserScan, lambda m: None, queue_size=1)]
+        time.sleep(1.0)
 
         def sim_now():
             return rospy.wait_for_message('/clock', Clock, timeout=30).clock.to_sec()
@@ -264,6 +281,11 @@ def main():
         print('%-48s %14.1f %14.2f' % ('depth+colour frames/s 640x480, 2 cores: car', c2['fps'], c2['fps'] / pb['camera']))
         print('%-48s %14.1f %14s' % ('getCameraImage 640x480 (TinyRenderer): PyBullet', pb['camera'], '1'))
         print('%-48s %13.1fx' % ('full stack in the core (1 kHz, lidar 5.5 Hz, depth 10 Hz)', c2['full']))
+        best, tried = core_many()
+        fig['many.cars_at_1x_real_time'] = best
+        fig['many.x_real_time_by_cars'] = {str(k): v for k, v in sorted(tried.items())}
+        print('%-48s %14d  (%s)' % ('seed cars with lidar + drive at >= 1x, one process', best,
+                                    ', '.join('%d: %.2fx' % kv for kv in sorted(tried.items()))))
         ros = ros_node_subprocess(a.seconds, True) / 1000.0
         fig['full_stack.ros_cloud_x_real_time'] = ros
         print('%-48s %13.1fx  = %.1f clouds/s published' % ('ROS node, /scan and 20 Hz cloud subscribed', ros, ros * 20))
@@ -275,6 +297,9 @@ def main():
         with open(a.json, 'w') as f:
             json.dump(fig, f, indent=1, sort_keys=True)
         print('figures written to %s' % a.json)
+        import table
+        print()
+        print(table.render(fig))
     return 0
 
 

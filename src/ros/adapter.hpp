@@ -6,8 +6,11 @@
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <functional>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "car_sim/world.hpp"
 
@@ -22,6 +25,30 @@ class NodeContext {
   virtual tf2_ros::TransformBroadcaster& tf() = 0;
   // The sim time of a tick.
   virtual ros::Time stamp(uint64_t tick) const = 0;
+
+  // Publishes msg on pub (a ros::Publisher or image_transport::Publisher) from the node's publishing thread:
+  // the message is moved there, serialised and sent while the physics steps on; messages go out in the order
+  // they were posted (src/ros/publish_queue.hpp).
+  template <class P, class M>
+  void publish(const P& pub, M msg) {
+    const size_t bytes = ros::serialization::serializationLength(msg);
+    post([pub, m = std::move(msg)] { pub.publish(m); }, bytes);
+  }
+  // Transforms on /tf, the same way (the broadcaster is made on the first call, as tf()).
+  void send_tf(geometry_msgs::TransformStamped t) { send_tf(std::vector<geometry_msgs::TransformStamped>{std::move(t)}); }
+  void send_tf(std::vector<geometry_msgs::TransformStamped> ts) {
+    tf2_ros::TransformBroadcaster* b = &tf();
+    const size_t bytes = ts.size() * 128;
+    post([b, v = std::move(ts)] { b->sendTransform(v); }, bytes);
+  }
+
+  // Returns once everything published so far has been sent (before an answer that must come after them,
+  // e.g. an action's result after the controller's last state).
+  virtual void flush_published() = 0;
+
+ protected:
+  // A job for the publishing thread, with its size [bytes] for the queue's bound.
+  virtual void post(std::function<void()> job, size_t bytes) = 0;
 };
 
 class Adapter {

@@ -2,6 +2,7 @@
 // states, and which lazy plug-ins someone listens to.
 #include "node.hpp"
 
+#include <ros/callback_queue.h>
 #include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/JointState.h>
 
@@ -83,8 +84,14 @@ void SimNode::run() {
   uint64_t tick0 = world_->tick();
   bool was_paused = true;
   auto last_paused_clock = clock::now();
+  ros::CallbackQueue& callbacks = *ros::getGlobalCallbackQueue();
   while (ros::ok()) {
-    ros::spinOnce();
+    // callbacks (commands, service calls) only when some are queued; before them, every message of the steps
+    // so far is sent, so an answer or a command sees the same order as with synchronous publishing
+    if (!callbacks.isEmpty()) {
+      publisher_.flush();
+      ros::spinOnce();
+    }
     if (paused_) {
       was_paused = true;
       // keep /clock alive while paused, at 10 Hz of wall time
@@ -111,10 +118,12 @@ void SimNode::run() {
       continue;
     }
     publish_outputs();
-    publish_performance();
+    // real-time factor: looked at every 100 steps (a clock read), published once a wall second
+    if (world_->tick() % 100 == 0) publish_performance();
     if (iters_ > 0 && --iters_ == 0) {
       // gzserver --iters N: N steps, then the server exits
       ROS_INFO("car: --iters reached at %.3f s of sim time: shutting down", stamp(world_->tick()).toSec());
+      publisher_.flush();
       ros::shutdown();
       break;
     }
@@ -150,7 +159,7 @@ void SimNode::log_world(const std::string& file) {
 void SimNode::publish_clock() {
   rosgraph_msgs::Clock c;
   c.clock = stamp(world_->tick());
-  clock_pub_.publish(c);
+  publish(clock_pub_, c);
 }
 
 void SimNode::publish_outputs() {
@@ -173,7 +182,7 @@ void SimNode::publish_outputs() {
         js.position.push_back(j.position);
         js.velocity.push_back(j.velocity);
       }
-      io.joint_states.publish(js);
+      publish(io.joint_states, std::move(js));
     }
   }
   if (tick % period_of(model_states_rate_) == 0 && model_states_pub_.getNumSubscribers() > 0) {
@@ -184,7 +193,7 @@ void SimNode::publish_outputs() {
       ms.pose.push_back(to_pose(s.pose));
       ms.twist.push_back(to_twist(s.linear, s.angular));
     }
-    model_states_pub_.publish(ms);
+    publish(model_states_pub_, std::move(ms));
   }
   if (tick % period_of(model_states_rate_) == 0 && link_states_pub_.getNumSubscribers() > 0) publish_link_states();
 }

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "adapter.hpp"
+#include "publish_queue.hpp"
 #include "car_sim/world.hpp"
 
 namespace car_ros {
@@ -62,6 +63,10 @@ class SimNode : public NodeContext {
     return *tf_;
   }
   ros::Time stamp(uint64_t tick) const override;
+  void flush_published() override { publisher_.flush(); }
+
+ protected:
+  void post(std::function<void()> job, size_t bytes) override { publisher_.post(std::move(job), bytes); }
 
  private:
   // One adapter per plug-in instance of a robot.
@@ -138,6 +143,9 @@ class SimNode : public NodeContext {
   ros::Publisher performance_pub_;
   std::chrono::steady_clock::time_point perf_wall_ = std::chrono::steady_clock::now();
   uint64_t perf_tick_ = 0;
+  // Last member: destroyed first, so it sends what is queued while every publisher above still exists.
+  // Bound: 256 MB or 4096 messages waiting (25 Kinect clouds of 10 MB).
+  PublishQueue publisher_{256u << 20, 4096};
 };
 
 }  // namespace car_ros

@@ -528,7 +528,7 @@ void SimNode::publish_link_states() {
       ls.pose.push_back(to_pose(s.pose));
       ls.twist.push_back(to_twist(s.linear, s.angular));
     }
-  link_states_pub_.publish(ls);
+  publish(link_states_pub_, std::move(ls));
 }
 
 }  // namespace car_ros

@@ -14,7 +14,7 @@ class CameraAdapter : public Adapter {
   bool listened() const override { return topics_.listened(); }
   void publish(const car_sim::Output& out, NodeContext& node) override {
     const auto& o = static_cast<const car_sim::CameraOut&>(out);
-    topics_.publish(o, node.stamp(o.tick));
+    topics_.publish(o, node.stamp(o.tick), node);
   }
 
  private:

@@ -115,14 +115,14 @@ bool CameraTopics::listened() const {
   return false;
 }
 
-void CameraTopics::publish(const car_sim::CameraOut& o, const ros::Time& stamp) {
-  if (image_.getNumSubscribers() > 0) image_.publish(camera_image(o, frame_, stamp));
+void CameraTopics::publish(const car_sim::CameraOut& o, const ros::Time& stamp, NodeContext& node) {
+  if (image_.getNumSubscribers() > 0) node.publish(image_, camera_image(o, frame_, stamp));
   const bool info_due =
       info_period_ <= 0.0 || (stamp - last_info_).toSec() >= info_period_ - 1e-9 || stamp < last_info_;
   if (!info_due) return;
   const sensor_msgs::CameraInfo ci = camera_info(o, cfg_, frame_, stamp);
-  info_.publish(ci);
-  if (extra_info) extra_info.publish(ci);
+  if (extra_info) node.publish(extra_info, ci);
+  node.publish(info_, ci);
   last_info_ = stamp;
 }
 

@@ -8,6 +8,7 @@
 
 #include <string>
 
+#include "../adapter.hpp"
 #include "camera/camera.hpp"
 
 namespace car_ros {
@@ -31,7 +32,7 @@ class CameraTopics {
   std::string advertise(ros::NodeHandle& nh, const car_sim::PluginConfig& c, const std::string& model_name);
   bool listened() const;
   // Image (when subscribed) and camera_info (when due) of a frame; returns the frame's stamp.
-  void publish(const car_sim::CameraOut& o, const ros::Time& stamp);
+  void publish(const car_sim::CameraOut& o, const ros::Time& stamp, NodeContext& node);
   const std::string& base() const { return base_; }
   const std::string& frame_id() const { return frame_; }
   ros::Publisher extra_info;  // a second camera_info topic published with the first (the Kinect's depth info)

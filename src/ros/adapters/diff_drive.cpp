@@ -58,13 +58,13 @@ class DiffDriveAdapter : public Adapter {
     const double cov[6] = {1e-5, 1e-5, 1e12, 1e12, 1e12, 1e-3};
     for (int i = 0; i < 6; ++i) msg.pose.covariance[i * 7] = cov[i];
     msg.twist.twist = to_twist(o.linear, o.angular);
-    odom_.publish(msg);
+    node.publish(odom_, msg);
     if (cfg_.publish_odom_tf) {
       geometry_msgs::TransformStamped t;
       t.header = msg.header;
       t.child_frame_id = msg.child_frame_id;
       t.transform = to_transform(o.pose);
-      node.tf().sendTransform(t);
+      node.send_tf(t);
     }
     if (cfg_.publish_wheel_joint_state) {
       sensor_msgs::JointState js;
@@ -74,7 +74,7 @@ class DiffDriveAdapter : public Adapter {
         js.position.push_back(j.position);
         js.velocity.push_back(j.velocity);
       }
-      wheel_joint_states_.publish(js);
+      node.publish(wheel_joint_states_, js);
     }
     if (cfg_.publish_wheel_tf) {
       // fix: each wheel relative to its parent link (upstream publishes it relative to the odometry frame)
@@ -87,7 +87,7 @@ class DiffDriveAdapter : public Adapter {
         Eigen::Isometry3d T = joint->origin;
         T.rotate(Eigen::AngleAxisd(j.position, joint->axis));
         t.transform = to_transform(T);
-        node.tf().sendTransform(t);
+        node.send_tf(t);
       }
     }
   }

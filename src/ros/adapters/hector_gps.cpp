@@ -38,13 +38,13 @@ class HectorGpsAdapter : public Adapter {
     f.position_covariance[0] = o.position_variance.x();
     f.position_covariance[4] = o.position_variance.y();
     f.position_covariance[8] = o.position_variance.z();
-    fix_.publish(f);
+    node.publish(fix_, f);
     geometry_msgs::Vector3Stamped v;
     v.header = f.header;
     v.vector.x = o.velocity.x();
     v.vector.y = o.velocity.y();
     v.vector.z = o.velocity.z();
-    vel_.publish(v);
+    node.publish(vel_, v);
   }
 
  private:

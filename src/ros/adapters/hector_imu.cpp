@@ -78,13 +78,13 @@ class HectorImuAdapter : public Adapter {
     m.header.frame_id = frame_;
     if (imu_) {
       fill(&m, o.orientation, o.angular_velocity, o.linear_acceleration);
-      imu_.publish(m);
+      node.publish(imu_, m);
     }
     if (bias_) {
       sensor_msgs::Imu b;
       b.header = m.header;
       fill(&b, o.orientation_error, o.rate_bias, o.accel_bias);
-      bias_.publish(b);
+      node.publish(bias_, b);
     }
   }
 

@@ -30,7 +30,7 @@ class HectorSonarAdapter : public Adapter {
     m.min_range = o.min_range;
     m.max_range = o.max_range;
     m.range = o.range;
-    pub_.publish(m);
+    node.publish(pub_, m);
   }
 
  private:

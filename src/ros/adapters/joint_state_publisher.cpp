@@ -29,7 +29,7 @@ class JointStatePublisherAdapter : public Adapter {
       m.position.push_back(j.position);
       m.velocity.push_back(j.velocity);
     }
-    pub_.publish(m);
+    node.publish(pub_, m);
   }
 
  private:

@@ -43,7 +43,7 @@ class MultiCameraAdapter : public Adapter {
     const ros::Time stamp = node.stamp(o.tick);
     for (size_t i = 0; i < o.frames.size(); ++i)
       for (size_t k = 0; k < sides_.size(); ++k)
-        if (sides_[k] == o.sides[i]) topics_[k].publish(o.frames[i], stamp);
+        if (sides_[k] == o.sides[i]) topics_[k].publish(o.frames[i], stamp, node);
   }
 
  private:

@@ -28,9 +28,9 @@ class KinectAdapter : public Adapter {
   void publish(const car_sim::Output& out, NodeContext& node) override {
     const auto& o = static_cast<const car_sim::CameraOut&>(out);
     const ros::Time stamp = node.stamp(o.tick);
-    topics_.publish(o, stamp);
-    if (depth_.getNumSubscribers() > 0) depth_.publish(depth_image(o, millimetres_, topics_.frame_id(), stamp));
-    if (points_.getNumSubscribers() > 0) points_.publish(point_cloud(o, topics_.frame_id(), stamp));
+    topics_.publish(o, stamp, node);
+    if (depth_.getNumSubscribers() > 0) node.publish(depth_, depth_image(o, millimetres_, topics_.frame_id(), stamp));
+    if (points_.getNumSubscribers() > 0) node.publish(points_, point_cloud(o, topics_.frame_id(), stamp));
   }
 
  private:

@@ -45,8 +45,8 @@ class PlanarMoveAdapter : public Adapter {
     t.header = m.header;
     t.child_frame_id = base_frame_;
     t.transform = to_transform(o.pose);
-    node.tf().sendTransform(t);
-    odom_.publish(m);
+    node.send_tf(t);
+    node.publish(odom_, m);
   }
 
  private:

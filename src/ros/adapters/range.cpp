@@ -36,7 +36,7 @@ class RangeAdapter : public Adapter {
     m.min_range = o.min_range;
     m.max_range = o.max_range;
     m.range = o.range;
-    pub_.publish(m);
+    node.publish(pub_, m);
   }
 
  private:

@@ -142,7 +142,7 @@ class RosControlAdapter : public Adapter {
       m.position = js->position;
       m.velocity = js->velocity;
       m.effort = js->effort;
-      c.pub.publish(m);
+      node.publish(c.pub, m);
     } else if (const auto* od = dynamic_cast<const DiffDriveOdometryOutput*>(o)) {
       nav_msgs::Odometry m;
       m.header.stamp = stamp;
@@ -158,7 +158,7 @@ class RosControlAdapter : public Adapter {
         m.pose.covariance[i * 7] = od->pose_cov[i];
         m.twist.covariance[i * 7] = od->twist_cov[i];
       }
-      c.pub.publish(m);
+      node.publish(c.pub, m);
       if (od->tf) {
         geometry_msgs::TransformStamped t;
         t.header = m.header;
@@ -166,7 +166,7 @@ class RosControlAdapter : public Adapter {
         t.transform.translation.x = od->x;
         t.transform.translation.y = od->y;
         t.transform.rotation = m.pose.pose.orientation;
-        node.tf().sendTransform(t);
+        node.send_tf(t);
       }
     } else if (const auto* st = dynamic_cast<const JointControllerStateOutput*>(o)) {
       control_msgs::JointControllerState m;
@@ -182,7 +182,7 @@ class RosControlAdapter : public Adapter {
       m.d = st->pid.d;
       m.i_clamp = st->pid.i_max;
       m.antiwindup = st->pid.antiwindup;
-      c.pub.publish(m);
+      node.publish(c.pub, m);
     } else if (const auto* ts = dynamic_cast<const TrajectoryStateOutput*>(o)) {
       control_msgs::JointTrajectoryControllerState m;
       m.header.stamp = stamp;
@@ -195,13 +195,15 @@ class RosControlAdapter : public Adapter {
         m.error.positions.push_back(ts->desired_position[k] - ts->actual_position[k]);
         m.error.velocities.push_back(ts->desired_velocity[k] - ts->actual_velocity[k]);
       }
-      c.pub.publish(m);
+      node.publish(c.pub, m);
     } else if (const auto* r = dynamic_cast<const TrajectoryResultOutput*>(o)) {
       const auto g = c.goals.find(r->goal);
       if (g == c.goals.end()) return;
       control_msgs::FollowJointTrajectoryResult res;
       res.error_code = r->error_code == -6 ? 0 : r->error_code;
       res.error_string = r->error_string;
+      // the controller's states up to the goal's end go out before its result
+      node.flush_published();
       if (r->error_code == 0)
         g->second.setSucceeded(res);
       else if (r->error_code == -6)

@@ -52,9 +52,9 @@ class SkidSteerAdapter : public Adapter {
       t.header = m.header;
       t.child_frame_id = base_frame_;
       t.transform = to_transform(o.pose);
-      node.tf().sendTransform(t);
+      node.send_tf(t);
     }
-    odom_.publish(m);
+    node.publish(odom_, m);
   }
 
  private:

@@ -59,8 +59,8 @@ class TricycleAdapter : public Adapter {
     t.header = m.header;
     t.child_frame_id = base_frame_;
     t.transform = to_transform(o.pose);
-    node.tf().sendTransform(t);
-    odom_.publish(m);
+    node.send_tf(t);
+    node.publish(odom_, m);
     if (joint_states_) {
       sensor_msgs::JointState js;
       js.header.stamp = stamp;
@@ -69,7 +69,7 @@ class TricycleAdapter : public Adapter {
         js.position.push_back(j.position);
         js.velocity.push_back(j.velocity);
       }
-      joint_states_.publish(js);
+      node.publish(joint_states_, js);
     }
     if (wheel_tf_) {
       // fix: the child link's frame relative to its parent link (upstream names the child frame after the joint)
@@ -82,7 +82,7 @@ class TricycleAdapter : public Adapter {
         Eigen::Isometry3d T = joint->origin;
         T.rotate(Eigen::AngleAxisd(j.position, joint->axis));
         w.transform = to_transform(T);
-        node.tf().sendTransform(w);
+        node.send_tf(w);
       }
     }
   }
