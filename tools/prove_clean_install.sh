@@ -67,11 +67,14 @@ phase() {  # phase NAME COMMAND...: runs it, records the wall time, stops the pr
 in_root() {  # in_root NET|NONET SCRIPT: runs SCRIPT with bash inside the root (own mount and pid namespace)
   local net="$1"
   printf '%s\n' "$2" > "$R/root/.prove_step.sh"
-  local unshare_args=(--mount --pid --fork --propagation private)
+  # own UTS namespace too: the root's hostname is car-clean, which its /etc/hosts resolves (roslaunch and roscore
+  # contact themselves by hostname; the host's name means nothing inside a root without a network)
+  local unshare_args=(--mount --pid --uts --fork --propagation private)
   local pre=""
   if [ "$net" = NONET ]; then unshare_args+=(--net); pre="ip link set lo up;"; fi
   unshare "${unshare_args[@]}" bash -c "
     set -e; $pre
+    hostname car-clean
     mount -t proc proc '$R/proc'
     mount --rbind /dev '$R/dev'
     mount --rbind /sys '$R/sys'
