@@ -68,11 +68,12 @@ class MotionTest(unittest.TestCase):
         t = Twist()
         t.linear.x, t.linear.y, t.angular.z = vx, vy, w
         self.start(twist=t)
-        msgs = [m for m in self.odom.until(2.0) if m.header.stamp.to_sec() <= 2.0 + 1e-9]
-        # which 20 Hz messages arrive depends on the machine (the publisher's queue is 1, as upstream's, and rtf 0
-        # runs as fast as it can; the count is tested in test/plugins/planar_move): each one that does is checked
-        # at its own stamp, and one from the last half second must be among them
-        self.assertGreaterEqual(max(m.header.stamp.to_sec() for m in msgs), 1.5)
+        # every message up to the first stamped at or after 2 s: which 20 Hz messages arrive depends on the machine
+        # (the publisher's queue is 1, as upstream's, and rtf 0 runs as fast as it can; the count is tested in
+        # test/plugins/planar_move), so each one that does is checked at its own stamp. The mover's circle (centre
+        # (-0.4, 1.0), radius 1.08 m) stays clear of the wall and of bumpy, so the arc holds at any stamp.
+        msgs = self.odom.until(2.0)
+        self.assertGreaterEqual(msgs[-1].header.stamp.to_sec(), 2.0)
         for m in msgs:
             s = m.header.stamp.to_sec()
             k = s / 0.05
@@ -83,7 +84,9 @@ class MotionTest(unittest.TestCase):
             y = (vy * math.sin(w * s) + vx * (1 - math.cos(w * s))) / w
             self.assertAlmostEqual(m.pose.pose.position.x, x, delta=2e-3, msg='x at t = %.2f s' % s)
             self.assertAlmostEqual(m.pose.pose.position.y, y, delta=2e-3, msg='y at t = %.2f s' % s)
-            self.assertAlmostEqual(yaw(m), w * s, delta=2e-3, msg='yaw at t = %.2f s' % s)
+            err = yaw(m) - w * s
+            self.assertAlmostEqual(math.atan2(math.sin(err), math.cos(err)), 0.0, delta=2e-3,
+                                   msg='yaw at t = %.2f s' % s)
 
     def test_bumper_resting_on_the_ground(self):
         # the ground carries m g = 98 N, pushing up (+z) into the box
