@@ -161,7 +161,12 @@ def validate():
     data = mujoco.MjData(model)
     mujoco.mj_step(model, data, nstep=2000)
     bid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, base)
-    rest_z = float(data.xpos[bid][2])
+    # car's figure is base_link's height; car lumps base_link into the massless root's body (fixed joint), so
+    # its frame sits at its lumped offset in that body
+    from car import _core
+    lumped = {l['name']: l['pose']['xyz'] for l in _core.load_urdf_file(URDF)['lumped']}
+    offset = np.array(lumped.get('base_link', [0.0, 0.0, 0.0]) if base != 'base_link' else [0.0, 0.0, 0.0])
+    rest_z = float((data.xpos[bid] + data.xmat[bid].reshape(3, 3) @ offset)[2])
     command(model, data, left, right, sep, radius, 1.0, 1.0)
     mujoco.mj_step(model, data, nstep=2000)
     pts = []
