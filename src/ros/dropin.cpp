@@ -147,7 +147,7 @@ void SimNode::publish_performance() {
     gazebo_msgs::PerformanceMetrics m;
     m.header.stamp = stamp(tick);
     m.real_time_factor = static_cast<double>(tick - perf_tick_) * world_->dt() / elapsed;
-    publish(performance_pub_, m);
+    publish(performance_pub_, std::move(m));
   }
   perf_wall_ = wall;
   perf_tick_ = tick;

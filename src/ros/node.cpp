@@ -159,7 +159,7 @@ void SimNode::log_world(const std::string& file) {
 void SimNode::publish_clock() {
   rosgraph_msgs::Clock c;
   c.clock = stamp(world_->tick());
-  publish(clock_pub_, c);
+  publish(clock_pub_, std::move(c));
 }
 
 void SimNode::publish_outputs() {

@@ -34,7 +34,7 @@ class BlockLaserAdapter : public Adapter {
     }
     m.channels.resize(1);
     m.channels[0].values = o.intensities;
-    node.publish(pub_, m);
+    node.publish(pub_, std::move(m));
   }
 
  private:

@@ -65,7 +65,7 @@ class BumperAdapter : public Adapter {
       s.total_wrench = wrench(c.total);
       m.states.push_back(std::move(s));
     }
-    node.publish(pub_, m);
+    node.publish(pub_, std::move(m));
   }
 
  private:

@@ -120,9 +120,9 @@ void CameraTopics::publish(const car_sim::CameraOut& o, const ros::Time& stamp, 
   const bool info_due =
       info_period_ <= 0.0 || (stamp - last_info_).toSec() >= info_period_ - 1e-9 || stamp < last_info_;
   if (!info_due) return;
-  const sensor_msgs::CameraInfo ci = camera_info(o, cfg_, frame_, stamp);
+  sensor_msgs::CameraInfo ci = camera_info(o, cfg_, frame_, stamp);
   if (extra_info) node.publish(extra_info, ci);
-  node.publish(info_, ci);
+  node.publish(info_, std::move(ci));
   last_info_ = stamp;
 }
 

@@ -64,7 +64,7 @@ class DiffDriveAdapter : public Adapter {
       t.header = msg.header;
       t.child_frame_id = msg.child_frame_id;
       t.transform = to_transform(o.pose);
-      node.send_tf(t);
+      node.send_tf(std::move(t));
     }
     if (cfg_.publish_wheel_joint_state) {
       sensor_msgs::JointState js;
@@ -74,7 +74,7 @@ class DiffDriveAdapter : public Adapter {
         js.position.push_back(j.position);
         js.velocity.push_back(j.velocity);
       }
-      node.publish(wheel_joint_states_, js);
+      node.publish(wheel_joint_states_, std::move(js));
     }
     if (cfg_.publish_wheel_tf) {
       // fix: each wheel relative to its parent link (upstream publishes it relative to the odometry frame)
@@ -87,7 +87,7 @@ class DiffDriveAdapter : public Adapter {
         Eigen::Isometry3d T = joint->origin;
         T.rotate(Eigen::AngleAxisd(j.position, joint->axis));
         t.transform = to_transform(T);
-        node.send_tf(t);
+        node.send_tf(std::move(t));
       }
     }
   }

@@ -32,7 +32,7 @@ class F3dAdapter : public Adapter {
     m.wrench.torque.x = o.wrench.torque.x();
     m.wrench.torque.y = o.wrench.torque.y();
     m.wrench.torque.z = o.wrench.torque.z();
-    node.publish(pub_, m);
+    node.publish(pub_, std::move(m));
   }
 
  private:

@@ -35,7 +35,7 @@ class HandOfGodAdapter : public Adapter {
     t.header.stamp = node.stamp(o.tick);
     t.child_frame_id = frame_id_ + "_actual";
     t.transform = to_transform(o.pose);
-    node.send_tf(t);
+    node.send_tf(std::move(t));
     try {
       const geometry_msgs::TransformStamped d = buffer_->lookupTransform("world", frame_id_ + "_desired", ros::Time(0));
       geometry_msgs::Pose p;

@@ -44,7 +44,7 @@ class HectorGpsAdapter : public Adapter {
     v.vector.x = o.velocity.x();
     v.vector.y = o.velocity.y();
     v.vector.z = o.velocity.z();
-    node.publish(vel_, v);
+    node.publish(vel_, std::move(v));
   }
 
  private:

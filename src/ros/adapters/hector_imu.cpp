@@ -84,7 +84,7 @@ class HectorImuAdapter : public Adapter {
       sensor_msgs::Imu b;
       b.header = m.header;
       fill(&b, o.orientation_error, o.rate_bias, o.accel_bias);
-      node.publish(bias_, b);
+      node.publish(bias_, std::move(b));
     }
   }
 

@@ -35,14 +35,14 @@ class HectorMagneticAdapter : public Adapter {
       m.magnetic_field.x = o.field.x();
       m.magnetic_field.y = o.field.y();
       m.magnetic_field.z = o.field.z();
-      node.publish(pub_, m);
+      node.publish(pub_, std::move(m));
     } else {
       geometry_msgs::Vector3Stamped m;
       m.header = h;
       m.vector.x = o.field.x();
       m.vector.y = o.field.y();
       m.vector.z = o.field.z();
-      node.publish(pub_, m);
+      node.publish(pub_, std::move(m));
     }
   }
 

@@ -30,7 +30,7 @@ class HectorSonarAdapter : public Adapter {
     m.min_range = o.min_range;
     m.max_range = o.max_range;
     m.range = o.range;
-    node.publish(pub_, m);
+    node.publish(pub_, std::move(m));
   }
 
  private:

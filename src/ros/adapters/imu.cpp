@@ -43,7 +43,7 @@ class ImuAdapter : public Adapter {
       m.angular_velocity_covariance[i * 4] = variance_;
       m.linear_acceleration_covariance[i * 4] = variance_;
     }
-    node.publish(imu_, m);
+    node.publish(imu_, std::move(m));
   }
 
  private:

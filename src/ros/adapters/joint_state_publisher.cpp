@@ -29,7 +29,7 @@ class JointStatePublisherAdapter : public Adapter {
       m.position.push_back(j.position);
       m.velocity.push_back(j.velocity);
     }
-    node.publish(pub_, m);
+    node.publish(pub_, std::move(m));
   }
 
  private:

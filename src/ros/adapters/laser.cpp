@@ -33,7 +33,7 @@ class LaserAdapter : public Adapter {
     m.range_max = o.range_max;
     m.ranges = o.ranges;
     m.intensities = o.intensities;
-    node.publish(scan_, m);
+    node.publish(scan_, std::move(m));
   }
 
  private:

@@ -34,7 +34,7 @@ class P3dAdapter : public Adapter {
       m.pose.covariance[i * 7] = variance_;
       m.twist.covariance[i * 7] = variance_;
     }
-    node.publish(pub_, m);
+    node.publish(pub_, std::move(m));
   }
 
  private:

@@ -45,8 +45,8 @@ class PlanarMoveAdapter : public Adapter {
     t.header = m.header;
     t.child_frame_id = base_frame_;
     t.transform = to_transform(o.pose);
-    node.send_tf(t);
-    node.publish(odom_, m);
+    node.send_tf(std::move(t));
+    node.publish(odom_, std::move(m));
   }
 
  private:

@@ -36,7 +36,7 @@ class RangeAdapter : public Adapter {
     m.min_range = o.min_range;
     m.max_range = o.max_range;
     m.range = o.range;
-    node.publish(pub_, m);
+    node.publish(pub_, std::move(m));
   }
 
  private:

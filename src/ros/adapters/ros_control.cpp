@@ -142,7 +142,7 @@ class RosControlAdapter : public Adapter {
       m.position = js->position;
       m.velocity = js->velocity;
       m.effort = js->effort;
-      node.publish(c.pub, m);
+      node.publish(c.pub, std::move(m));
     } else if (const auto* od = dynamic_cast<const DiffDriveOdometryOutput*>(o)) {
       nav_msgs::Odometry m;
       m.header.stamp = stamp;
@@ -166,7 +166,7 @@ class RosControlAdapter : public Adapter {
         t.transform.translation.x = od->x;
         t.transform.translation.y = od->y;
         t.transform.rotation = m.pose.pose.orientation;
-        node.send_tf(t);
+        node.send_tf(std::move(t));
       }
     } else if (const auto* st = dynamic_cast<const JointControllerStateOutput*>(o)) {
       control_msgs::JointControllerState m;
@@ -182,7 +182,7 @@ class RosControlAdapter : public Adapter {
       m.d = st->pid.d;
       m.i_clamp = st->pid.i_max;
       m.antiwindup = st->pid.antiwindup;
-      node.publish(c.pub, m);
+      node.publish(c.pub, std::move(m));
     } else if (const auto* ts = dynamic_cast<const TrajectoryStateOutput*>(o)) {
       control_msgs::JointTrajectoryControllerState m;
       m.header.stamp = stamp;
@@ -195,7 +195,7 @@ class RosControlAdapter : public Adapter {
         m.error.positions.push_back(ts->desired_position[k] - ts->actual_position[k]);
         m.error.velocities.push_back(ts->desired_velocity[k] - ts->actual_velocity[k]);
       }
-      node.publish(c.pub, m);
+      node.publish(c.pub, std::move(m));
     } else if (const auto* r = dynamic_cast<const TrajectoryResultOutput*>(o)) {
       const auto g = c.goals.find(r->goal);
       if (g == c.goals.end()) return;

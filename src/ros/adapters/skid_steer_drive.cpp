@@ -52,9 +52,9 @@ class SkidSteerAdapter : public Adapter {
       t.header = m.header;
       t.child_frame_id = base_frame_;
       t.transform = to_transform(o.pose);
-      node.send_tf(t);
+      node.send_tf(std::move(t));
     }
-    node.publish(odom_, m);
+    node.publish(odom_, std::move(m));
   }
 
  private:

@@ -59,8 +59,8 @@ class TricycleAdapter : public Adapter {
     t.header = m.header;
     t.child_frame_id = base_frame_;
     t.transform = to_transform(o.pose);
-    node.send_tf(t);
-    node.publish(odom_, m);
+    node.send_tf(std::move(t));
+    node.publish(odom_, std::move(m));
     if (joint_states_) {
       sensor_msgs::JointState js;
       js.header.stamp = stamp;
@@ -69,7 +69,7 @@ class TricycleAdapter : public Adapter {
         js.position.push_back(j.position);
         js.velocity.push_back(j.velocity);
       }
-      node.publish(joint_states_, js);
+      node.publish(joint_states_, std::move(js));
     }
     if (wheel_tf_) {
       // fix: the child link's frame relative to its parent link (upstream names the child frame after the joint)
@@ -82,7 +82,7 @@ class TricycleAdapter : public Adapter {
         Eigen::Isometry3d T = joint->origin;
         T.rotate(Eigen::AngleAxisd(j.position, joint->axis));
         w.transform = to_transform(T);
-        node.send_tf(w);
+        node.send_tf(std::move(w));
       }
     }
   }

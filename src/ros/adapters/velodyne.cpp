@@ -60,7 +60,7 @@ class VelodyneAdapter : public Adapter {
       std::memcpy(p + 16, &o.intensities[i], 4);
       std::memcpy(p + 20, &o.rings[i], 2);
     }
-    node.publish(pub_, m);
+    node.publish(pub_, std::move(m));
   }
 
  private:
