@@ -110,8 +110,12 @@ class WebViewTest(unittest.TestCase):
         rospy.wait_for_service('/gazebo/get_model_state', timeout=120)
         cls.state = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
         wait_for(lambda: cls.state(MODEL, '').success, 120, 'the car to spawn')
-        cls.cmds = []
-        rospy.Subscriber('/cmd_vel', Twist, cls.cmds.append)
+        cls.cmds, cls.cmd_times = [], []  # cmd_vel messages and the sim time [s] each arrived at
+
+        def cmd(m):
+            cls.cmd_times.append(rospy.get_time())
+            cls.cmds.append(m)
+        rospy.Subscriber('/cmd_vel', Twist, cmd)
         # the view is in its loop (it subscribes to /gazebo/model_states just before it), with no browser yet
         wait_for(lambda: '/gazebo/model_states' in view_subscriptions(), 120, "the view's model_states subscription")
         cls.sensor_subs_before = sensor_subscriptions()
@@ -169,13 +173,26 @@ class WebViewTest(unittest.TestCase):
         # the dead-man window (1 s of wall time) closes: a zero command follows
         wait_for(lambda: self.cmds and self.cmds[-1].linear.x == 0.0, 30, 'the dead-man stop')
         # the car moved forward (+x at yaw 0). One press drives it for 1 s of wall time, 0.5 m/s x the real-time
-        # factor; on a machine too busy for 5 cm per press, pressing again as a user would
+        # factor; on a machine too busy for 5 cm per press, pressing again as a user would. What happened is kept
+        # for the message: presses (and how long each click took), forward commands seen, and the sim time
+        # between the first and the last of them
+        presses = []
+
         def moved():
-            if self.state(MODEL, '').pose.position.x - x0 > 0.05:
+            x = self.state(MODEL, '').pose.position.x
+            if x - x0 > 0.05:
                 return True
+            t = time.time()
             button.click()
+            presses.append((round(time.time() - t, 2), round(x - x0, 3)))
             return False
-        wait_for(moved, 60, 'the car to move 5 cm forward')
+        try:
+            wait_for(moved, 120, 'the car to move 5 cm forward')
+        except AssertionError as e:
+            fwd = [t for t, c in zip(self.cmd_times, self.cmds) if c.linear.x > 0.0]
+            raise AssertionError('%s: %d presses (click s, dx m) %s; %d forward cmd_vel of %d, sim time %s; '
+                                 'sim time now %.2f s' % (e, len(presses), presses[-10:], len(fwd), len(self.cmds),
+                                                          fwd[-10:], rospy.get_time()))
 
     def test_4_closing_the_browser_leaves_the_sim_running_and_a_new_one_sees_the_scene(self):
         # close the first browser: the simulation's clock goes on
