@@ -9,6 +9,9 @@ namespace physics {
 
 namespace {
 
+// [-] manifolds + constraints of all awake islands from which a step solves them on several threads
+constexpr int kParallelWork = 32;
+
 // The island a constraint belongs to (Bullet's rule: the island of its first body that has one).
 int island_of(const btTypedConstraint* c) {
   const int a = c->getRigidBodyA().getIslandTag();
@@ -90,7 +93,11 @@ void IslandWorld::solveConstraints(btContactSolverInfo& info) {
   islands_.clear();
   m_islandManager->buildAndProcessIslands(getDispatcher(), this, collector_.get());
   const int n = static_cast<int>(islands_.size());
-  const int threads = std::min(n, static_cast<int>(solvers_.size()));
+  // Threads only for enough work to pay for waking them: a single car among resting boxes (about 20 manifolds
+  // and constraints) stays on this thread, four cars and more go parallel.
+  int work = 0;
+  for (const Island& s : islands_) work += s.num_manifolds + s.num_constraints + s.num_mb_constraints;
+  const int threads = work >= kParallelWork ? std::min(n, static_cast<int>(solvers_.size())) : 1;
   if (threads > 1) {
     // Which thread takes which island changes nothing: the solvers are identical and keep no state between
     // problems. Islands share only static objects (read) and Bullet's fixed solver body (one per solver).
