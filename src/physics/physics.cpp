@@ -20,6 +20,7 @@
 #include "bodies.hpp"
 #include "guard.hpp"
 #include "materials.hpp"
+#include "island_world.hpp"
 #include "surface.hpp"
 
 namespace car_sim {
@@ -123,7 +124,8 @@ struct Physics::Impl {
   btCollisionDispatcher dispatcher{&config};
   btDbvtBroadphase broadphase;
   SurfaceSolver solver;  // Bullet's, with Gazebo's surface rules where a pair needs them (surface.hpp)
-  btMultiBodyDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+  // islands solved one by one, on every core OpenMP offers (island_world.hpp)
+  IslandWorld world{&dispatcher, &broadphase, &solver, &config};
   // static meshes (declared before the shapes that point into them): Bullet's view of the triangles, and the scaled copies it points into
   std::vector<std::unique_ptr<btTriangleIndexVertexArray>> mesh_arrays;
   std::vector<std::unique_ptr<std::vector<btScalar>>> mesh_vertices;

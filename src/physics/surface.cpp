@@ -67,6 +67,18 @@ bool needs_conversion(const btPersistentManifold* m) {
   return std::min(sa.mu1, sb.mu1) != std::min(sa.mu2, sb.mu2);
 }
 
+// Whether no point of a manifold has friction by Bullet's combination (sliding, rolling or spinning): then its
+// contacts need normal rows only.
+bool frictionless(const btPersistentManifold* m) {
+  const int n = m->getNumContacts();
+  for (int j = 0; j < n; ++j) {
+    const btManifoldPoint& cp = m->getContactPoint(j);
+    if (cp.m_combinedFriction != 0 || cp.m_combinedRollingFriction != 0 || cp.m_combinedSpinningFriction != 0)
+      return false;
+  }
+  return n > 0;
+}
+
 }  // namespace
 
 bool Surface::needs_conversion() const {
@@ -124,22 +136,45 @@ bool SurfaceCollider::checkCollideWithOverride(const btCollisionObject* co) cons
 void SurfaceSolver::convertContacts(btPersistentManifold** manifolds, int count, const btContactSolverInfo& info) {
   bullet_.resize(0);
   car_.resize(0);
+  frictionless_.resize(0);
+  no_friction_rows_.resize(0);
   for (int i = 0; i < count; ++i) {
     btPersistentManifold* m = manifolds[i];
     const bool multibody = btMultiBodyLinkCollider::upcast(m->getBody0()) || btMultiBodyLinkCollider::upcast(m->getBody1());
     if (multibody && needs_conversion(m))
       car_.push_back(m);
+    else if (multibody && frictionless(m))
+      frictionless_.push_back(m);
     else
       bullet_.push_back(m);
   }
   // Bullet's own conversion (it also adds the joint constraints' rows), then car's contacts
   btMultiBodyConstraintSolver::convertContacts(bullet_.size() ? &bullet_[0] : nullptr, bullet_.size(), info);
-  for (int i = 0; i < car_.size(); ++i) convert(car_[i], info);
+  for (int i = 0; i < car_.size(); ++i) convert(car_[i], info, true);
+  for (int i = 0; i < frictionless_.size(); ++i) convert(frictionless_[i], info, false);
+}
+
+// Bullet's finish reads two friction rows at every normal row's friction index: normal rows without friction
+// rows point at two idle rows (no body, no impulse) appended here, which write back nothing.
+btScalar SurfaceSolver::solveGroupCacheFriendlyFinish(btCollisionObject** bodies, int count,
+                                                     const btContactSolverInfo& info) {
+  if (no_friction_rows_.size()) {
+    const int idle = m_multiBodyFrictionContactConstraints.size();
+    for (int k = 0; k < 2; ++k) {
+      btMultiBodySolverConstraint& c = m_multiBodyFrictionContactConstraints.expand();
+      c.m_orgConstraint = nullptr;
+      c.m_multiBodyA = c.m_multiBodyB = nullptr;
+      c.m_appliedImpulse = 0;
+    }
+    for (int i = 0; i < no_friction_rows_.size(); ++i)
+      m_multiBodyNormalContactConstraints[no_friction_rows_[i]].m_frictionIndex = idle;
+  }
+  return btMultiBodyConstraintSolver::solveGroupCacheFriendlyFinish(bodies, count, info);
 }
 
 // One manifold with a multibody on at least one side: per point one normal row and two friction rows, set up by
 // Bullet's own row builders, with Gazebo's pair rules for the coefficients, directions and depth.
-void SurfaceSolver::convert(btPersistentManifold* m, const btContactSolverInfo& info) {
+void SurfaceSolver::convert(btPersistentManifold* m, const btContactSolverInfo& info, bool rules) {
   auto* co0 = const_cast<btCollisionObject*>(m->getBody0());
   auto* co1 = const_cast<btCollisionObject*>(m->getBody1());
   const btMultiBodyLinkCollider* fcA = btMultiBodyLinkCollider::upcast(co0);
@@ -158,6 +193,7 @@ void SurfaceSolver::convert(btPersistentManifold* m, const btContactSolverInfo& 
     const btManifoldPoint& cp = m->getContactPoint(j);
     if (cp.getDistance() > m->getContactProcessingThreshold()) continue;
     order[used++] = j;
+    if (!rules) continue;
     const PairSurface p = combine(co0, surface_at(co0, cp.m_index0), co1, surface_at(co1, cp.m_index1));
     if (p.max_contacts) keep = keep ? std::min(*keep, *p.max_contacts) : *p.max_contacts;
   }
@@ -176,14 +212,17 @@ void SurfaceSolver::convert(btPersistentManifold* m, const btContactSolverInfo& 
       cp.m_prevRHS = 0;
       continue;
     }
-    const PairSurface p = combine(co0, surface_at(co0, cp.m_index0), co1, surface_at(co1, cp.m_index1));
+    // without rules: Bullet's normal row (its own stiffness and erp), friction 0
+    PairSurface p;
+    p.mu1 = p.mu2 = 0.0;
+    if (rules) p = combine(co0, surface_at(co0, cp.m_index0), co1, surface_at(co1, cp.m_index1));
     if (p.stiffness) {
       // Bullet's solver turns these into erp = dt kp / (dt kp + kd), cfm = 1 / (dt kp + kd), as ODE
       cp.m_contactPointFlags |= BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING;
       cp.m_combinedContactStiffness1 = p.kp;
       cp.m_combinedContactDamping1 = p.kd;
     }
-    cp.m_combinedFriction = std::max(p.mu1, p.mu2);
+    if (rules) cp.m_combinedFriction = std::max(p.mu1, p.mu2);
 
     const int normal_index = m_multiBodyNormalContactConstraints.size();
     btMultiBodySolverConstraint& c = m_multiBodyNormalContactConstraints.expandNonInitializing();
@@ -211,6 +250,12 @@ void SurfaceSolver::convert(btPersistentManifold* m, const btContactSolverInfo& 
     setupMultiBodyContactConstraint(c, cp.m_normalWorldOnB, cp.m_appliedImpulse, cp, info, relaxation, false);
     cp.m_distance1 = distance;
     c.m_frictionIndex = m_multiBodyFrictionContactConstraints.size();
+    if (p.mu1 == 0 && p.mu2 == 0) {
+      // no friction on this pair: no friction rows (the finish points this row at idle ones)
+      no_friction_rows_.push_back(normal_index);
+      cp.m_appliedImpulseLateral1 = cp.m_appliedImpulseLateral2 = 0;
+      continue;
+    }
 
     // Friction directions: fdir1 projected onto the contact plane, else Bullet's plane space of the normal (as
     // its own path); direction 2 = normal x direction 1.

@@ -64,14 +64,23 @@ class SurfaceCollider : public btMultiBodyLinkCollider {
 // Bullet's multibody solver with car's conversion for the contacts whose pair needs Gazebo's surface rules
 // (mu1 != mu2, fdir1, kp/kd, minDepth, maxVel, maxContacts, shapes of one body with different surfaces).
 // Every other contact goes through Bullet's own conversion, unchanged.
+// A contact without friction on either side (a ball caster's, mu 0) gets its normal row only: Bullet would add
+// friction rows bounded to zero, which cost a Jacobian and an iteration each and never push.
 class SurfaceSolver : public btMultiBodyConstraintSolver {
  public:
   void convertContacts(btPersistentManifold** manifolds, int count, const btContactSolverInfo& info) override;
 
+ protected:
+  btScalar solveGroupCacheFriendlyFinish(btCollisionObject** bodies, int count,
+                                         const btContactSolverInfo& info) override;
+
  private:
-  void convert(btPersistentManifold* m, const btContactSolverInfo& info);
+  // rules: the pair needs Gazebo's surface rules; else it came here only for having no friction at all
+  void convert(btPersistentManifold* m, const btContactSolverInfo& info, bool rules);
   btAlignedObjectArray<btPersistentManifold*> bullet_;
   btAlignedObjectArray<btPersistentManifold*> car_;
+  btAlignedObjectArray<btPersistentManifold*> frictionless_;
+  btAlignedObjectArray<int> no_friction_rows_;  // normal rows without friction rows
 };
 
 }  // namespace physics

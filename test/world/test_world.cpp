@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 
+#include <omp.h>
+
 #include "car_sim/world.hpp"
 #include "test_util.hpp"
 
@@ -171,6 +173,37 @@ TEST(WorldPhysics, ResetReplaysBitForBit) {
   w->set_cmd_vel("mycar", 1.0, 1.0);
   w->step(1000);
   EXPECT_EQ(w->model_state("mycar").pose.translation(), first);
+}
+
+// Islands are solved one by one on every OpenMP thread (src/physics/island_world.hpp): an island's result does not
+// depend on which thread solved it or how many there are. Six cars, two of them nose to nose (one island), the
+// others apart, among box_house's boxes while those are still awake: one thread and two give the same poses.
+TEST(WorldPhysics, IslandsOnTwoThreadsMatchOneBitForBit) {
+  std::vector<double> runs[2];
+  const int threads[2] = {1, 2};
+  const int before = omp_get_max_threads();
+  for (int r = 0; r < 2; ++r) {
+    omp_set_num_threads(threads[r]);
+    auto w = std::make_unique<World>(load_world_file(std::string(CAR_SOURCE_DIR) + "/worlds/box_house.world"));
+    omp_set_num_threads(before);
+    // [m], world frame; car0 and car1 0.3 m apart facing each other
+    const double spots[6][3] = {{0, 0, 0}, {0.3, 0, M_PI}, {-2, -1, 0}, {2, -1, 1}, {1, 1.5, 2}, {-2, 1.5, -1}};
+    for (int i = 0; i < 6; ++i) {
+      const std::string name = "car" + std::to_string(i);
+      w->spawn(car(), name, at(spots[i][0], spots[i][1], spots[i][2]));
+      w->set_cmd_vel(name, i < 2 ? 0.3 : 0.5, i < 2 ? 0.0 : 1.0);
+    }
+    w->step(1500);
+    for (int i = 0; i < 6; ++i) {
+      const auto s = w->model_state("car" + std::to_string(i));
+      for (int k = 0; k < 3; ++k) runs[r].push_back(s.pose.translation()[k]);
+      for (int k = 0; k < 3; ++k) runs[r].push_back(s.linear[k]);
+    }
+  }
+  ASSERT_EQ(runs[0].size(), runs[1].size());
+  EXPECT_EQ(0, std::memcmp(runs[0].data(), runs[1].data(), runs[0].size() * sizeof(double)));
+  // the pair pushed against each other and stayed apart (not through each other): car0 still left of car1
+  EXPECT_LT(runs[0][0], runs[0][6]);
 }
 
 TEST(WorldPhysics, OdometryAtUpdateRate) {

@@ -119,21 +119,24 @@ CameraPlugin::CameraPlugin(const PluginConfig& c, const std::string& robot, uint
   noise_stddev_ = c.number("camera/noise/stddev");
   // one ray per pixel through its centre; sensor frame x forward, y left, z up
   const size_t n = static_cast<size_t>(w_) * h_;
+  pixel_.reserve(n);
+  for (int tv = 0; tv < h_; tv += 4)
+    for (int tu = 0; tu < w_; tu += 4)
+      for (int v = tv; v < std::min(tv + 4, h_); ++v)
+        for (int u = tu; u < std::min(tu + 4, w_); ++u) pixel_.push_back(v * w_ + u);
   dirs_.resize(3 * n);
   cos_.resize(n);
   t_near_.resize(n);
   double min_cos = 1.0;
-  for (int v = 0; v < h_; ++v) {
-    for (int u = 0; u < w_; ++u) {
-      const size_t i = static_cast<size_t>(v) * w_ + u;
-      const Eigen::Vector3d d = Eigen::Vector3d(proto_.f, -(u - proto_.cx), -(v - proto_.cy)).normalized();
-      dirs_[3 * i] = static_cast<float>(d.x());
-      dirs_[3 * i + 1] = static_cast<float>(d.y());
-      dirs_[3 * i + 2] = static_cast<float>(d.z());
-      cos_[i] = static_cast<float>(d.x());
-      t_near_[i] = static_cast<float>(near_ / d.x());  // the near clip plane, along this ray
-      min_cos = std::min(min_cos, d.x());
-    }
+  for (size_t k = 0; k < n; ++k) {
+    const int u = pixel_[k] % w_, v = pixel_[k] / w_;
+    const Eigen::Vector3d d = Eigen::Vector3d(proto_.f, -(u - proto_.cx), -(v - proto_.cy)).normalized();
+    dirs_[3 * k] = static_cast<float>(d.x());
+    dirs_[3 * k + 1] = static_cast<float>(d.y());
+    dirs_[3 * k + 2] = static_cast<float>(d.z());
+    cos_[k] = static_cast<float>(d.x());
+    t_near_[k] = static_cast<float>(near_ / d.x());  // the near clip plane, along this ray
+    min_cos = std::min(min_cos, d.x());
   }
   t_far_ = static_cast<float>(far_ / min_cos);
   hits_.resize(n);
@@ -164,10 +167,11 @@ void CameraPlugin::post_physics(const StepContext& ctx, const RobotHandle& robot
   CameraOut& im = *o;
   // per pixel: depth, colour, point; independent pixels, so in parallel (noise, when configured, after)
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
-    const RayHit& h = hits_[i];
+  for (int k = 0; k < n; ++k) {
+    const int i = pixel_[k];
+    const RayHit& h = hits_[k];
     // depth along the optical axis; beyond the far clip is no hit
-    float d = std::isfinite(h.distance) ? h.distance * cos_[i] : kInf;
+    float d = std::isfinite(h.distance) ? h.distance * cos_[k] : kInf;
     if (d >= far) d = kInf;
     // colour: the material lit by the ambient and the directional light (Lambert), else the background
     Eigen::Vector3f rgb = bg;

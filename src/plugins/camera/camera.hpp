@@ -51,6 +51,10 @@ class CameraPlugin : public Plugin {
   double near_ = 0.1, far_ = 100.0, cutoff_ = 0.0, cutoff_max_ = 0.0;
   bool gaussian_ = false;
   double noise_mean_ = 0, noise_stddev_ = 0;
+  // Rays are cast in 4 x 4 pixel tiles (the 16 rays of one Embree packet cover a square of the image, not a
+  // 16-pixel strip: neighbouring rays visit the same BVH nodes); ray k is pixel pixel_[k]. dirs_, cos_, t_near_
+  // and hits_ are in ray order, rgb_ and the outputs in pixel order.
+  std::vector<int> pixel_;
   std::vector<float> dirs_, cos_, t_near_;
   std::vector<float> rgb_;  // [0, 1] per channel, before rounding
   float t_far_ = 0;
