@@ -286,8 +286,6 @@ void RayScene::cast(const Eigen::Vector3d& origin, const Eigen::Matrix3d& rotati
     alignas(64) int valid[16];
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
-    // a sensor's rays leave one origin in neighbouring directions: Embree's coherent traversal
-    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     const int base = p * 16;
     const int count = std::min(16, n - base);
     for (int k = 0; k < 16; ++k) {
