@@ -1,5 +1,6 @@
 #include "island_world.hpp"
 
+#include <BulletCollision/CollisionDispatch/btSimulationIslandManager.h>
 #include <omp.h>
 
 #include <algorithm>

@@ -6,10 +6,8 @@
 #pragma once
 
 #include <btBulletDynamicsCommon.h>
-#include <BulletCollision/CollisionDispatch/btSimulationIslandManager.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 
-#include <functional>
 #include <memory>
 #include <vector>
 
@@ -24,9 +22,6 @@ class IslandWorld : public btMultiBodyDynamicsWorld {
   IslandWorld(btDispatcher* dispatcher, btBroadphaseInterface* broadphase, SurfaceSolver* solver,
               btCollisionConfiguration* config);
   ~IslandWorld() override;
-
-  // Threads used for the islands of one step (1: all on the calling thread).
-  int threads() const { return static_cast<int>(solvers_.size()); }
 
  protected:
   void solveConstraints(btContactSolverInfo& info) override;
