@@ -1,7 +1,15 @@
 #include "island_world.hpp"
 
+#include <BulletCollision/CollisionDispatch/btCompoundCollisionAlgorithm.h>
+#include <BulletCollision/CollisionDispatch/btConvexPlaneCollisionAlgorithm.h>
 #include <BulletCollision/CollisionDispatch/btSimulationIslandManager.h>
-#include <omp.h>
+#include <BulletCollision/CollisionShapes/btCompoundShape.h>
+#include <BulletDynamics/Featherstone/btMultiBody.h>
+#include <BulletDynamics/Featherstone/btMultiBodyConstraint.h>
+#include <BulletDynamics/Featherstone/btMultiBodyInplaceSolverIslandCallback.h>
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+
+#include "car_sim/parallel.hpp"
 
 #include <algorithm>
 
@@ -12,6 +20,18 @@ namespace {
 
 // [-] manifolds + constraints of all awake islands from which a step solves them on several threads
 constexpr int kParallelWork = 32;
+// [-] multibodies from which an island's work (about 25 us per car and step) runs on several threads
+constexpr int kParallelBodies = 4;
+// [-] multibodies from which the integrated positions (about 1 us per car and step) do, when not in the tasks
+constexpr int kParallelPositions = 16;
+
+// Bullet's test (btMultiBodyDynamicsWorld): a multibody with any collider in a sleeping island is asleep.
+bool sleeping(const btMultiBody* b) {
+  if (b->getBaseCollider() && b->getBaseCollider()->getActivationState() == ISLAND_SLEEPING) return true;
+  for (int i = 0; i < b->getNumLinks(); ++i)
+    if (b->getLink(i).m_collider && b->getLink(i).m_collider->getActivationState() == ISLAND_SLEEPING) return true;
+  return false;
+}
 
 // The island a constraint belongs to (Bullet's rule: the island of its first body that has one).
 int island_of(const btTypedConstraint* c) {
@@ -34,7 +54,77 @@ void range_of(const btAlignedObjectArray<T*>& sorted, int island, int& first, in
   count = hi - lo;
 }
 
+// The island of a multibody: that of its first non-static collider (Bullet unites them all), -1 if none.
+int island_tag(const btMultiBody* b) {
+  const btCollisionObject* c = nullptr;
+  if (b->getBaseCollider() && !b->getBaseCollider()->isStaticOrKinematicObject()) c = b->getBaseCollider();
+  for (int l = 0; !c && l < b->getNumLinks(); ++l)
+    if (b->getLink(l).m_collider && !b->getLink(l).m_collider->isStaticOrKinematicObject()) c = b->getLink(l).m_collider;
+  return c ? c->getIslandTag() : -1;
+}
+
+// [-] settled pairs from which the narrow phase runs on several threads (a car on the ground has about eight)
+constexpr int kParallelPairs = 32;
+
+// Bullet's compound algorithm's record of the shape revision its child algorithms were made for (protected).
+struct CompoundAccess : btCompoundCollisionAlgorithm {
+  static int revision(const btCompoundCollisionAlgorithm* a) { return a->*(&CompoundAccess::m_compoundShapeRevision); }
+};
+
+// A pair whose narrow phase makes and frees nothing: its algorithm exists and is Bullet's convex-on-plane one
+// (its manifold is made with it), or a compound's whose shape is unchanged and whose every child has a
+// convex-on-plane algorithm (a plane's bounding box covers every child, so Bullet never drops one).
+bool settled(const btBroadphasePair& p) {
+  if (!p.m_algorithm) return false;
+  if (dynamic_cast<const btConvexPlaneCollisionAlgorithm*>(p.m_algorithm)) return true;
+  const auto* c = dynamic_cast<const btCompoundCollisionAlgorithm*>(p.m_algorithm);
+  if (!c) return false;
+  const auto* o0 = static_cast<const btCollisionObject*>(p.m_pProxy0->m_clientObject);
+  const auto* o1 = static_cast<const btCollisionObject*>(p.m_pProxy1->m_clientObject);
+  const btCollisionShape* s = o0->getCollisionShape()->isCompound() ? o0->getCollisionShape() : o1->getCollisionShape();
+  if (!s->isCompound()) return false;
+  const auto* compound = static_cast<const btCompoundShape*>(s);
+  if (CompoundAccess::revision(c) != compound->getUpdateRevision()) return false;
+  for (int i = 0; i < compound->getNumChildShapes(); ++i)
+    if (!dynamic_cast<const btConvexPlaneCollisionAlgorithm*>(c->getChildAlgorithm(i))) return false;
+  return true;
+}
+
 }  // namespace
+
+IslandDispatcher::IslandDispatcher(btCollisionConfiguration* config)
+    : btCollisionDispatcher(config), threads_(parallel_threads()) {}
+
+// Bullet's dispatch (btCollisionPairCallback over the pair array, in order, through the near callback), split in
+// two: the unsettled pairs here in array order, then the settled ones on the threads.
+void IslandDispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairs, const btDispatcherInfo& info,
+                                                 btDispatcher* dispatcher) {
+  if (threads_ < 2 || info.m_deterministicOverlappingPairs || getNearCallback() != &defaultNearCallback ||
+      pairs->getNumOverlappingPairs() < kParallelPairs) {
+    btCollisionDispatcher::dispatchAllCollisionPairs(pairs, info, dispatcher);
+    return;
+  }
+  btBroadphasePairArray& all = pairs->getOverlappingPairArray();
+  settled_.clear();
+  for (int i = 0; i < all.size(); ++i) {
+    if (settled(all[i]))
+      settled_.push_back(&all[i]);
+    else
+      defaultNearCallback(all[i], *this, info);
+  }
+  const int n = static_cast<int>(settled_.size());
+  if (n < kParallelPairs) {
+    for (int i = 0; i < n; ++i) defaultNearCallback(*settled_[i], *this, info);
+    return;
+  }
+  // chunks of 8 pairs claimed as threads come free (car's pool: a thread the OS runs late is not waited for)
+  parallel_for_threads(
+      (n + 7) / 8,
+      [&](int c, int) {
+        for (int i = 8 * c; i < std::min(n, 8 * c + 8); ++i) defaultNearCallback(*settled_[i], *this, info);
+      },
+      threads_);
+}
 
 // Bullet's island manager calls this once per awake island, in increasing island order; it copies the island's
 // bodies and manifolds (Bullet's arrays are reused for the next island) and finds its constraints.
@@ -43,6 +133,9 @@ struct IslandWorld::Collector : btSimulationIslandManager::IslandCallback {
   void processIsland(btCollisionObject** bodies, int num_bodies, btPersistentManifold** manifolds, int num_manifolds,
                      int island) override {
     Island s{};
+    s.tag = island;
+    if (island >= 0 && island < static_cast<int>(w->island_of_tag_.size()))
+      w->island_of_tag_[island] = static_cast<int>(w->islands_.size());
     s.bodies = w->bodies_.size();
     s.num_bodies = num_bodies;
     for (int i = 0; i < num_bodies; ++i) w->bodies_.push_back(bodies[i]);
@@ -66,14 +159,19 @@ IslandWorld::IslandWorld(btDispatcher* dispatcher, btBroadphaseInterface* broadp
     : btMultiBodyDynamicsWorld(dispatcher, broadphase, solver, config), collector_(std::make_unique<Collector>()) {
   collector_->w = this;
   solvers_.push_back(solver);
-  const int threads = std::max(1, omp_get_max_threads());
+  const int threads = parallel_threads();
   for (int t = 1; t < threads; ++t) {
     own_.push_back(std::make_unique<SurfaceSolver>());
     solvers_.push_back(own_.back().get());
   }
+  scratch_.resize(solvers_.size());
 }
 
 IslandWorld::~IslandWorld() = default;
+
+void IslandWorld::set_row_setup(RowSetup rows) {
+  for (SurfaceSolver* s : solvers_) s->set_row_setup(rows);
+}
 
 void IslandWorld::solve_island(SurfaceSolver& solver, const Island& s, const btContactSolverInfo& info) {
   btCollisionObject** bodies = s.num_bodies ? &bodies_[s.bodies] : nullptr;
@@ -84,30 +182,218 @@ void IslandWorld::solve_island(SurfaceSolver& solver, const Island& s, const btC
                              s.num_mb_constraints, info, m_debugDrawer, getDispatcher());
 }
 
-// Bullet's step of the constraints (btMultiBodyDynamicsWorld::solveConstraints) with the islands solved here:
-// the free accelerations and the sorted constraint arrays (Bullet's), every awake island as a problem of its own
-// (here), then Bullet's joint-feedback pass and velocity update (its island callback then holds nothing to solve).
+template <class F>
+void IslandWorld::for_each_multibody(F&& f) {
+  const int n = m_multiBodies.size();
+  const int threads = n >= kParallelPositions ? static_cast<int>(scratch_.size()) : 1;
+  if (threads > 1) {
+    // Which thread takes which body changes nothing: f touches only that body (and its colliders) and the
+    // thread's scratch, which Bullet's calls size and fill before they read it.
+    parallel_for_threads(
+        (n + 3) / 4,
+        [&](int c, int t) {
+          for (int i = 4 * c; i < std::min(n, 4 * c + 4); ++i) f(m_multiBodies[i], scratch_[t]);
+        },
+        threads);
+  } else {
+    for (int i = 0; i < n; ++i) f(m_multiBodies[i], scratch_[0]);
+  }
+}
+
+// A multibody's share of btMultiBodyDynamicsWorld::solveExternalForces: forward kinematics, constraint forces
+// cleared and, if it was awake before the islands were built, its free accelerations (Featherstone's
+// articulated-body algorithm; gravity was added in applyGravity and the forces are cleared in clearForces, as
+// Bullet 3.24 builds with BT_USE_VIRTUAL_CLEARFORCES_AND_GRAVITY).
+void IslandWorld::free_motion(int body, Scratch& s, const btContactSolverInfo& info) {
+  btMultiBody* b = m_multiBodies[body];
+  b->forwardKinematics(s.world_to_local, s.local_origin);
+  b->clearConstraintForces();
+  if (!awake_[body]) return;
+  s.r.resize(b->getNumLinks() + 1);
+  s.v.resize(b->getNumLinks() + 1);
+  s.m.resize(b->getNumLinks() + 1);
+  b->computeAccelerationsArticulatedBodyAlgorithmMultiDof(info.m_timeStep, s.r, s.v, s.m, false,
+                                                          getSolverInfo().m_jointFeedbackInWorldSpace,
+                                                          getSolverInfo().m_jointFeedbackInJointFrame);
+}
+
+// A multibody's share of btMultiBodyDynamicsWorld::solveInternalConstraints: the joint-feedback pass (the
+// accelerations again, with the constraint forces, if it reports joint forces and is awake now) and the velocity
+// update.
+void IslandWorld::constrained_motion(int body, Scratch& s, const btContactSolverInfo& info) {
+  btMultiBody* b = m_multiBodies[body];
+  if (!sleeping(b)) {
+    s.r.resize(b->getNumLinks() + 1);
+    s.v.resize(b->getNumLinks() + 1);
+    s.m.resize(b->getNumLinks() + 1);
+    if (b->internalNeedsJointFeedback())
+      b->computeAccelerationsArticulatedBodyAlgorithmMultiDof(info.m_timeStep, s.r, s.v, s.m, true,
+                                                              getSolverInfo().m_jointFeedbackInWorldSpace,
+                                                              getSolverInfo().m_jointFeedbackInJointFrame);
+  }
+  b->processDeltaVeeMultiDof2();
+}
+
+// Island k's work (k == islands_.size(): the multibodies in no awake island): its multibodies' free motion, the
+// island's constraint problem, its multibodies' constrained motion and (with integrated_) their new positions.
+void IslandWorld::island_task(int k, SurfaceSolver& solver, Scratch& s, const btContactSolverInfo& info) {
+  const Island& is = k < static_cast<int>(islands_.size()) ? islands_[k] : rest_;
+  for (int i = 0; i < is.num_mbs; ++i) free_motion(island_mbs_[is.mbs + i], s, info);
+  if (k < static_cast<int>(islands_.size())) solve_island(solver, is, info);
+  for (int i = 0; i < is.num_mbs; ++i) constrained_motion(island_mbs_[is.mbs + i], s, info);
+  if (integrated_)
+    for (int i = 0; i < is.num_mbs; ++i) integrate(m_multiBodies[island_mbs_[is.mbs + i]], s, info.m_timeStep);
+}
+
+// A multibody's share of btMultiBodyDynamicsWorld::integrateTransforms: its positions and its colliders'
+// transforms (a sleeping one: velocities cleared).
+void IslandWorld::integrate(btMultiBody* b, Scratch& s, btScalar dt) {
+  if (sleeping(b)) {
+    b->clearVelocities();
+    return;
+  }
+  b->addSplitV();
+  if (!b->isPosUpdated()) {
+    b->stepPositionsMultiDof(dt);
+  } else {
+    // RK4's position delta, stored after the velocities (Bullet's layout)
+    btScalar* delta =
+        const_cast<btScalar*>(b->getVelocityVector()) + 6 + b->getNumDofs() + b->getNumDofs() * b->getNumDofs();
+    b->stepPositionsMultiDof(1, 0, delta);
+    b->setPosUpdated(false);
+  }
+  s.world_to_local.resize(b->getNumLinks() + 1);
+  s.local_origin.resize(b->getNumLinks() + 1);
+  b->updateCollisionObjectWorldTransforms(s.world_to_local, s.local_origin);
+  b->substractSplitV();
+}
+
+// btMultiBodyDynamicsWorld::integrateTransforms: rigid bodies first (Bullet's, on this thread), then the
+// multibodies, unless the islands' tasks did them already (see solveConstraints).
+void IslandWorld::integrateTransforms(btScalar dt) {
+  btDiscreteDynamicsWorld::integrateTransforms(dt);
+  if (integrated_) {
+    integrated_ = false;
+    return;
+  }
+  for_each_multibody([this, dt](btMultiBody* b, Scratch& s) { integrate(b, s, dt); });
+}
+
+// Bullet's step of the constraints (btMultiBodyDynamicsWorld::solveConstraints) with each island's work done as
+// one task: Bullet runs free motion for every multibody, then the islands (merged into batches), then constrained
+// motion for every multibody. A multibody's free and constrained motion touch only that body, and an island's
+// problem only its own bodies, so doing an island's three parts together, island by island, gives Bullet's
+// numbers while each island's data stay in the cache, and the islands go to the threads with no barrier between
+// the parts. Two rules keep it so: a multibody's free motion depends on whether it was awake before the islands
+// were built (building them puts islands to sleep and wakes others), so that is taken first; and a manifold on a
+// static multibody collider (a fixed base), which any island may touch, makes the step run in Bullet's order.
 void IslandWorld::solveConstraints(btContactSolverInfo& info) {
-  solveExternalForces(info);
-  bodies_.resize(0);
-  manifolds_.resize(0);
-  islands_.clear();
-  m_islandManager->buildAndProcessIslands(getDispatcher(), this, collector_.get());
+  const int nmb = m_multiBodies.size();
+  bool rk4 = false;
+  for (int i = 0; i < nmb; ++i) rk4 = rk4 || m_multiBodies[i]->isUsingRK4Integration();
+  if (rk4) {
+    // Bullet's own passes (car uses no RK4), islands on this thread
+    btMultiBodyDynamicsWorld::solveExternalForces(info);
+    collect_islands();
+    for (const Island& is : islands_) solve_island(*solvers_[0], is, info);
+    btMultiBodyDynamicsWorld::solveInternalConstraints(info);
+    return;
+  }
+  // btMultiBodyDynamicsWorld::solveExternalForces's bookkeeping (its island callback is not used)
+  m_sortedConstraints.resize(m_constraints.size());
+  for (int i = 0; i < m_constraints.size(); ++i) m_sortedConstraints[i] = m_constraints[i];
+  m_sortedConstraints.quickSort(btSortConstraintOnIslandPredicate2());
+  m_sortedMultiBodyConstraints.resize(m_multiBodyConstraints.size());
+  for (int i = 0; i < m_multiBodyConstraints.size(); ++i) m_sortedMultiBodyConstraints[i] = m_multiBodyConstraints[i];
+  m_sortedMultiBodyConstraints.quickSort(btSortMultiBodyConstraintOnIslandPredicate());
+  m_constraintSolver->prepareSolve(getNumCollisionObjects(), getDispatcher()->getNumManifolds());
+  awake_.assign(nmb, 0);
+  for (int i = 0; i < nmb; ++i) awake_[i] = !sleeping(m_multiBodies[i]);
+  collect_islands();
+  const bool in_order = assign_multibodies();
   const int n = static_cast<int>(islands_.size());
   // Threads only for enough work to pay for waking them: a single car among resting boxes (about 20 manifolds
   // and constraints) stays on this thread, four cars and more go parallel.
   int work = 0;
-  for (const Island& s : islands_) work += s.num_manifolds + s.num_constraints + s.num_mb_constraints;
-  const int threads = work >= kParallelWork ? std::min(n, static_cast<int>(solvers_.size())) : 1;
-  if (threads > 1) {
+  for (const Island& is : islands_) work += is.num_manifolds + is.num_constraints + is.num_mb_constraints;
+  const int threads =
+      !in_order && (work >= kParallelWork || nmb >= kParallelBodies) ? static_cast<int>(solvers_.size()) : 1;
+  // Bullet integrates the rigid bodies before the multibodies, and a rigid body's CCD sweep reads the colliders:
+  // with no CCD the multibodies' positions are integrated in their islands' tasks (integrateTransforms then skips
+  // them), one pass fewer over all bodies.
+  integrated_ = !in_order && !ccd_bodies();
+  if (in_order) {
+    for (int i = 0; i < nmb; ++i) free_motion(i, scratch_[0], info);
+    for (const Island& is : islands_) solve_island(*solvers_[0], is, info);
+    for (int i = 0; i < nmb; ++i) constrained_motion(i, scratch_[0], info);
+  } else if (threads > 1) {
     // Which thread takes which island changes nothing: the solvers are identical and keep no state between
-    // problems. Islands share only static objects (read) and Bullet's fixed solver body (one per solver).
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-    for (int i = 0; i < n; ++i) solve_island(*solvers_[omp_get_thread_num()], islands_[i], info);
+    // problems, the scratch buffers are sized and filled before they are read. Islands share only static
+    // objects (read) and Bullet's fixed solver body (one per solver).
+    parallel_for_threads(n + 1, [&](int k, int t) { island_task(k, *solvers_[t], scratch_[t], info); }, threads);
   } else {
-    for (int i = 0; i < n; ++i) solve_island(*solvers_[0], islands_[i], info);
+    for (int k = 0; k <= n; ++k) island_task(k, *solvers_[0], scratch_[0], info);
   }
-  solveInternalConstraints(info);
+  m_constraintSolver->allSolved(info, m_debugDrawer);
+}
+
+// Whether a rigid body may sweep (Bullet's test in btDiscreteDynamicsWorld::integrateTransforms).
+bool IslandWorld::ccd_bodies() const {
+  if (!getDispatchInfo().m_useContinuous) return false;
+  for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i)
+    if (m_nonStaticRigidBodies[i]->getCcdSquareMotionThreshold() != 0) return true;
+  return false;
+}
+
+void IslandWorld::collect_islands() {
+  bodies_.resize(0);
+  manifolds_.resize(0);
+  islands_.clear();
+  island_of_tag_.assign(getNumCollisionObjects(), -1);
+  m_islandManager->buildAndProcessIslands(getDispatcher(), this, collector_.get());
+}
+
+// Sorts the multibodies into their islands (island_mbs_, each island's mbs range; rest_: those in no awake
+// island). A multibody's non-static colliders are all in one island (Bullet unites them); its island is the one
+// of the first. Returns true if the step must run in Bullet's order (see solveConstraints).
+bool IslandWorld::assign_multibodies() {
+  const int nmb = m_multiBodies.size();
+  const int n = static_cast<int>(islands_.size());
+  owner_.assign(nmb, n);
+  bool in_order = false;
+  for (const Island& is : islands_) in_order = in_order || is.tag < 0;  // islands not split: one problem
+  for (int i = 0; i < nmb; ++i) {
+    const int tag = island_tag(m_multiBodies[i]);
+    if (tag >= 0 && tag < static_cast<int>(island_of_tag_.size()) && island_of_tag_[tag] >= 0)
+      owner_[i] = island_of_tag_[tag];
+  }
+  for (int m = 0; m < manifolds_.size() && !in_order; ++m) {
+    for (const btCollisionObject* o : {manifolds_[m]->getBody0(), manifolds_[m]->getBody1()})
+      if (btMultiBodyLinkCollider::upcast(o) && o->isStaticOrKinematicObject()) in_order = true;
+  }
+  // a multibody constraint on a multibody of another island or of none
+  for (const Island& is : islands_) {
+    for (int c = 0; c < is.num_mb_constraints && !in_order; ++c) {
+      btMultiBodyConstraint* mc = m_sortedMultiBodyConstraints[is.mb_constraints + c];
+      for (const btMultiBody* b : {mc->getMultiBodyA(), mc->getMultiBodyB()})
+        if (b && island_tag(b) != is.tag) in_order = true;
+    }
+  }
+  // counting sort by island, in multibody order within an island
+  std::vector<int>& count = island_count_;
+  count.assign(n + 2, 0);
+  for (int i = 0; i < nmb; ++i) ++count[owner_[i] + 1];
+  for (int k = 0; k <= n; ++k) count[k + 1] += count[k];
+  for (int k = 0; k < n; ++k) {
+    islands_[k].mbs = count[k];
+    islands_[k].num_mbs = count[k + 1] - count[k];
+  }
+  rest_ = Island{};
+  rest_.mbs = count[n];
+  rest_.num_mbs = count[n + 1] - count[n];
+  island_mbs_.resize(nmb);
+  for (int i = 0; i < nmb; ++i) island_mbs_[count[owner_[i]]++] = i;
+  return in_order;
 }
 
 }  // namespace physics

@@ -2,11 +2,16 @@
 // the core; docs/COMPAT-physics.md "Islands"). Bullet solves all awake islands in one batch on one thread. Here
 // each island (a robot and what it touches, a pile of boxes) is its own constraint problem, solved by one of a set
 // of identical solvers: an island's result depends on nothing outside it, so it is the same bit for bit whichever
-// thread solves it and however many there are (OMP_NUM_THREADS=1 gives the same trajectory as 2).
+// thread solves it and however many there are (OMP_NUM_THREADS=1 gives the same trajectory as 2). The work Bullet
+// does body by body (Featherstone's free accelerations, the joint-feedback pass, the integrated positions) is done
+// in each multibody's island's task, and the narrow phase of settled pairs on the same threads: each multibody's
+// and each pair's arithmetic is Bullet's own, on its own data and a scratch buffer of the thread's, so it too is
+// the same bit for bit on any thread.
 #pragma once
 
 #include <btBulletDynamicsCommon.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
+#include <LinearMath/btQuaternion.h>
 
 #include <memory>
 #include <vector>
@@ -16,12 +21,34 @@
 namespace car_sim {
 namespace physics {
 
+// Bullet's dispatcher, with the narrow phase of the pairs that can no longer allocate on the OpenMP threads: a
+// convex shape or a compound of convex shapes on a static plane whose collision algorithms (and so their
+// manifolds) exist. Every other pair is processed first, on the calling thread, in Bullet's order, so manifolds are
+// made and freed in Bullet's order; each pair writes only its own manifolds, so the contacts are Bullet's bit for
+// bit on any number of threads.
+class IslandDispatcher : public btCollisionDispatcher {
+ public:
+  explicit IslandDispatcher(btCollisionConfiguration* config);
+  void dispatchAllCollisionPairs(btOverlappingPairCache* pairs, const btDispatcherInfo& info,
+                                 btDispatcher* dispatcher) override;
+
+ private:
+  int threads_;
+  std::vector<btBroadphasePair*> settled_;
+};
+
 class IslandWorld : public btMultiBodyDynamicsWorld {
  public:
   // `solver` solves on the calling thread; each other OpenMP thread gets a SurfaceSolver of its own.
   IslandWorld(btDispatcher* dispatcher, btBroadphaseInterface* broadphase, SurfaceSolver* solver,
               btCollisionConfiguration* config);
   ~IslandWorld() override;
+
+  // How every solver of this world sets up its rows.
+  void set_row_setup(RowSetup rows);
+
+  // Bullet's, with the multibodies integrated in their islands' tasks, or on the OpenMP threads.
+  void integrateTransforms(btScalar dt) override;
 
  protected:
   void solveConstraints(btContactSolverInfo& info) override;
@@ -33,17 +60,45 @@ class IslandWorld : public btMultiBodyDynamicsWorld {
     int manifolds, num_manifolds;
     int constraints, num_constraints;  // into m_sortedConstraints
     int mb_constraints, num_mb_constraints;  // into m_sortedMultiBodyConstraints
+    int mbs, num_mbs;  // into island_mbs_
+    int tag;           // Bullet's island id (-1: islands not split)
   };
   struct Collector;
+  // One thread's scratch buffers for Bullet's multibody calls (Bullet's world keeps one set, for one thread).
+  struct alignas(64) Scratch {
+    btAlignedObjectArray<btScalar> r;
+    btAlignedObjectArray<btVector3> v;
+    btAlignedObjectArray<btMatrix3x3> m;
+    btAlignedObjectArray<btQuaternion> world_to_local;
+    btAlignedObjectArray<btVector3> local_origin;
+  };
 
   void solve_island(SurfaceSolver& solver, const Island& island, const btContactSolverInfo& info);
+  void collect_islands();
+  bool assign_multibodies();
+  void free_motion(int body, Scratch& s, const btContactSolverInfo& info);
+  void constrained_motion(int body, Scratch& s, const btContactSolverInfo& info);
+  void island_task(int k, SurfaceSolver& solver, Scratch& s, const btContactSolverInfo& info);
+  void integrate(btMultiBody* b, Scratch& s, btScalar dt);
+  bool ccd_bodies() const;
+  // Runs f(body, scratch) for every multibody, on one thread or on all (same result bit for bit).
+  template <class F>
+  void for_each_multibody(F&& f);
 
   std::vector<SurfaceSolver*> solvers_;  // [0] the world's own, then one per further thread
   std::vector<std::unique_ptr<SurfaceSolver>> own_;
+  std::vector<Scratch> scratch_;  // one per solver (thread)
   std::unique_ptr<Collector> collector_;
   btAlignedObjectArray<btCollisionObject*> bodies_;
   btAlignedObjectArray<btPersistentManifold*> manifolds_;
   std::vector<Island> islands_;
+  Island rest_{};                  // the multibodies in no awake island
+  std::vector<int> island_of_tag_;  // Bullet's island id -> index into islands_, or -1
+  std::vector<char> awake_;         // per multibody: awake before the islands were built
+  std::vector<int> owner_;          // per multibody: its island's index (islands_.size(): none)
+  std::vector<int> island_mbs_;     // multibody indices grouped by island
+  std::vector<int> island_count_;
+  bool integrated_ = false;  // this step's islands' tasks integrated the multibodies
 };
 
 }  // namespace physics

@@ -121,7 +121,7 @@ class BulletRobot;
 struct Physics::Impl {
   Options options;
   btDefaultCollisionConfiguration config;
-  btCollisionDispatcher dispatcher{&config};
+  IslandDispatcher dispatcher{&config};  // the settled pairs' narrow phase on every core (island_world.hpp)
   btDbvtBroadphase broadphase;
   SurfaceSolver solver;  // Bullet's, with Gazebo's surface rules where a pair needs them (surface.hpp)
   // islands solved one by one, on every core OpenMP offers (island_world.hpp)
@@ -372,7 +372,7 @@ class BulletRobot : public Robot {
       const bool bounded = j.type == JointType::Revolute || j.type == JointType::Prismatic;
       if (bounded && j.limits && j.limits->lower < j.limits->upper)
         add_constraint(new btMultiBodyJointLimitConstraint(mb, link, j.limits->lower, j.limits->upper));
-      if (j.friction > 0.0) add_constraint(new btMultiBodyJointMotor(mb, link, 0, 0.0, j.friction * P_.options.dt));
+      if (j.friction > 0.0) add_constraint(new JointMotor(mb, link, 0, 0.0, j.friction * P_.options.dt));
     }
     collect_link_forces();
     update_colliders();
@@ -407,7 +407,7 @@ class BulletRobot : public Robot {
   int add_motor(int joint, double max_effort) override {
     const Joint* j = link_joint_.at(joint);
     if (j->limits && j->limits->effort > 0.0) max_effort = std::min(max_effort, j->limits->effort);
-    auto* m = new btMultiBodyJointMotor(mb_.get(), joint, 0, 0.0, max_effort * P_.options.dt);
+    auto* m = new JointMotor(mb_.get(), joint, 0, 0.0, max_effort * P_.options.dt);
     add_constraint(m);
     motors_.push_back(m);
     motor_impulse_.push_back(max_effort * P_.options.dt);
@@ -617,6 +617,7 @@ Physics::Impl::Impl(const WorldDescription& d, const Options& o) : options(o) {
   si.m_solverMode |= SOLVER_DISABLE_IMPLICIT_CONE_FRICTION;
   // carry the whole previous impulse over, so a resting solution keeps converging from step to step
   si.m_warmstartingFactor = 1.0;
+  world.set_row_setup(o.rows);
   gCalculateCombinedFrictionCallback = &min_friction;
   gCalculateCombinedRestitutionCallback = &no_restitution;
 }

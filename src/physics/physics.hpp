@@ -21,10 +21,16 @@ class btRigidBody;
 namespace car_sim {
 namespace physics {
 
+// How the contact and motor rows are set up (docs/COMPAT-physics.md "Row set-up"): by Bullet; by car's set-up
+// with Bullet's Featherstone pass for each row's response (Bullet's rows bit for bit: the tests' reference); by
+// car's set-up with the factored mass matrix (the default).
+enum class RowSetup { bullet, car_exact, factored };
+
 struct Options {
   int solver_iterations = 10;
   double residual_threshold = 1e-9;
   double dt = 0.001;  // [s]; motors cap their impulse at effort * dt
+  RowSetup rows = RowSetup::factored;
 };
 
 class Robot;

@@ -10,6 +10,32 @@ namespace physics {
 
 namespace {
 
+// The solver whose joint constraints are making their rows on this thread (JointMotor asks it for responses).
+thread_local SurfaceSolver* converting_ = nullptr;
+
+// acc + sum of a[i] b[i], added in index order as Bullet's loops add them (the same bits).
+inline btScalar add_dot(btScalar acc, const btScalar* a, const btScalar* b, int n) {
+  for (int i = 0; i < n; ++i) acc += a[i] * b[i];
+  return acc;
+}
+
+// A multibody side of a new row in the solver's arrays, as Bullet's row builders make it: the multibody's block of
+// velocity changes (one per multibody and solve, made on its first row) and the row's Jacobian and response slots.
+// Returns the multibody's 6 + dofs.
+int reserve_side(btMultiBodyJacobianData& data, btMultiBody* mb, int* vel_index, int* jac_index) {
+  const int ndof = mb->getNumDofs() + 6;
+  *vel_index = mb->getCompanionId();
+  if (*vel_index < 0) {
+    *vel_index = data.m_deltaVelocities.size();
+    mb->setCompanionId(*vel_index);
+    data.m_deltaVelocities.resize(data.m_deltaVelocities.size() + ndof);
+  }
+  *jac_index = data.m_jacobians.size();
+  data.m_jacobians.resize(data.m_jacobians.size() + ndof);
+  data.m_deltaVelocitiesUnitImpulse.resize(data.m_deltaVelocitiesUnitImpulse.size() + ndof);
+  return ndof;
+}
+
 // Bullet's persistent manifold holds at most this many points per pair.
 constexpr int kManifoldPoints = 4;
 
@@ -148,8 +174,34 @@ void SurfaceSolver::convertContacts(btPersistentManifold** manifolds, int count,
     else
       bullet_.push_back(m);
   }
-  // Bullet's own conversion (it also adds the joint constraints' rows), then car's contacts
-  btMultiBodyConstraintSolver::convertContacts(bullet_.size() ? &bullet_[0] : nullptr, bullet_.size(), info);
+  own_ = own_rows(info);
+  inverse_used_ = 0;
+  if (!own_) {
+    // Bullet's own conversion (it also adds the joint constraints' rows), then car's contacts
+    btMultiBodyConstraintSolver::convertContacts(bullet_.size() ? &bullet_[0] : nullptr, bullet_.size(), info);
+  } else {
+    // Bullet's conversion in Bullet's order, multibody rows set up by car; then the joint constraints' rows
+    const bool caching = info.m_solverMode & SOLVER_ENABLE_FRICTION_DIRECTION_CACHING;
+    for (int i = 0; i < bullet_.size(); ++i) {
+      btPersistentManifold* m = bullet_[i];
+      if (!btMultiBodyLinkCollider::upcast(m->getBody0()) && !btMultiBodyLinkCollider::upcast(m->getBody1())) {
+        convertContact(m, info);
+        continue;
+      }
+      bool plain = !caching;
+      for (int j = 0; j < m->getNumContacts() && plain; ++j) {
+        const btManifoldPoint& cp = m->getContactPoint(j);
+        plain = cp.m_combinedSpinningFriction <= 0 && cp.m_combinedRollingFriction <= 0;
+      }
+      if (plain)
+        convert_bullet(m, info);
+      else
+        convertMultiBodyContact(m, info);
+    }
+    converting_ = this;
+    btMultiBodyConstraintSolver::convertContacts(nullptr, 0, info);
+    converting_ = nullptr;
+  }
   for (int i = 0; i < car_.size(); ++i) convert(car_[i], info, true);
   for (int i = 0; i < frictionless_.size(); ++i) convert(frictionless_[i], info, false);
 }
@@ -247,7 +299,10 @@ void SurfaceSolver::convert(btPersistentManifold* m, const btContactSolverInfo& 
     }
     cp.m_distance1 = d;
     btScalar relaxation;
-    setupMultiBodyContactConstraint(c, cp.m_normalWorldOnB, cp.m_appliedImpulse, cp, info, relaxation, false);
+    if (own_)
+      setup_row(c, cp.m_normalWorldOnB, cp, info, relaxation, false);
+    else
+      setupMultiBodyContactConstraint(c, cp.m_normalWorldOnB, cp.m_appliedImpulse, cp, info, relaxation, false);
     cp.m_distance1 = distance;
     c.m_frictionIndex = m_multiBodyFrictionContactConstraints.size();
     if (p.mu1 == 0 && p.mu2 == 0) {
@@ -272,12 +327,519 @@ void SurfaceSolver::convert(btPersistentManifold* m, const btContactSolverInfo& 
     cp.m_lateralFrictionDir1 = d1;
     cp.m_lateralFrictionDir2 = d2;
     // each row limited by its own coefficient times the normal impulse (ODE's friction pyramid)
-    addMultiBodyFrictionConstraint(cp.m_lateralFrictionDir1, cp.m_appliedImpulseLateral1, m, normal_index, cp, co0, co1,
-                                   relaxation, info)
-        .m_friction = p.mu1;
-    addMultiBodyFrictionConstraint(cp.m_lateralFrictionDir2, cp.m_appliedImpulseLateral2, m, normal_index, cp, co0, co1,
-                                   relaxation, info)
-        .m_friction = p.mu2;
+    if (own_) {
+      add_friction_row(cp.m_lateralFrictionDir1, m, normal_index, cp, relaxation, info).m_friction = p.mu1;
+      add_friction_row(cp.m_lateralFrictionDir2, m, normal_index, cp, relaxation, info).m_friction = p.mu2;
+    } else {
+      addMultiBodyFrictionConstraint(cp.m_lateralFrictionDir1, cp.m_appliedImpulseLateral1, m, normal_index, cp, co0,
+                                     co1, relaxation, info)
+          .m_friction = p.mu1;
+      addMultiBodyFrictionConstraint(cp.m_lateralFrictionDir2, cp.m_appliedImpulseLateral2, m, normal_index, cp, co0,
+                                     co1, relaxation, info)
+          .m_friction = p.mu2;
+    }
+  }
+}
+
+
+// Bullet's iterations, then each multibody's accumulated velocity change handed to it once. Bullet adds every row's
+// change to the multibody (applyDeltaVeeMultiDof2) as well as to the solver's array, the same terms in the same
+// order from zero; nothing reads the multibody's copy before the iterations end (Bullet's own comment says as
+// much), so adding the array once at the end gives it the same bits.
+btScalar SurfaceSolver::solveGroupCacheFriendlyIterations(btCollisionObject** bodies, int num_bodies,
+                                                          btPersistentManifold** manifolds, int num_manifolds,
+                                                          btTypedConstraint** constraints, int num_constraints,
+                                                          const btContactSolverInfo& info, btIDebugDraw* draw) {
+  own_iterations_ = false;
+  const btScalar r = btMultiBodyConstraintSolver::solveGroupCacheFriendlyIterations(
+      bodies, num_bodies, manifolds, num_manifolds, constraints, num_constraints, info, draw);
+  if (!own_iterations_) return r;
+  touched_.clear();
+  auto note = [&](btMultiBody* mb, int index) {
+    if (!mb) return;
+    for (const auto& t : touched_)
+      if (t.first == mb) return;
+    touched_.emplace_back(mb, index);
+  };
+  for (const auto* rows : {&m_multiBodyNonContactConstraints, &m_multiBodyNormalContactConstraints,
+                           &m_multiBodyFrictionContactConstraints})
+    for (int i = 0; i < rows->size(); ++i) {
+      note((*rows)[i].m_multiBodyA, (*rows)[i].m_deltaVelAindex);
+      note((*rows)[i].m_multiBodyB, (*rows)[i].m_deltaVelBindex);
+    }
+  for (const auto& t : touched_) t.first->applyDeltaVeeMultiDof2(&m_data.m_deltaVelocities[t.second], btScalar(1));
+  return r;
+}
+
+// Bullet's row update, written for the compiler: the Jacobian, the unit-impulse response and the accumulated
+// velocity change of each side are read through raw pointers, and the sums run in Bullet's order (no reassociation,
+// no fused multiply-add on this build), so every impulse is Bullet's to the bit.
+btScalar SurfaceSolver::resolve(const btMultiBodySolverConstraint& c) {
+  btScalar delta = c.m_rhs - btScalar(c.m_appliedImpulse) * c.m_cfm;
+  btScalar dva = 0, dvb = 0;
+  btSolverBody* body_a = nullptr;
+  btSolverBody* body_b = nullptr;
+  const btScalar* jac = m_data.m_jacobians.size() ? &m_data.m_jacobians[0] : nullptr;
+  const btScalar* unit = m_data.m_deltaVelocitiesUnitImpulse.size() ? &m_data.m_deltaVelocitiesUnitImpulse[0] : nullptr;
+  btScalar* dv = m_data.m_deltaVelocities.size() ? &m_data.m_deltaVelocities[0] : nullptr;
+  int na = 0, nb = 0;
+  if (c.m_multiBodyA) {
+    na = c.m_multiBodyA->getNumDofs() + 6;
+    const btScalar* j = jac + c.m_jacAindex;
+    const btScalar* v = dv + c.m_deltaVelAindex;
+    dva = add_dot(dva, j, v, na);
+  } else if (c.m_solverBodyIdA >= 0) {
+    body_a = &m_tmpSolverBodyPool[c.m_solverBodyIdA];
+    dva += c.m_contactNormal1.dot(body_a->internalGetDeltaLinearVelocity()) +
+           c.m_relpos1CrossNormal.dot(body_a->internalGetDeltaAngularVelocity());
+  }
+  if (c.m_multiBodyB) {
+    nb = c.m_multiBodyB->getNumDofs() + 6;
+    const btScalar* j = jac + c.m_jacBindex;
+    const btScalar* v = dv + c.m_deltaVelBindex;
+    dvb = add_dot(dvb, j, v, nb);
+  } else if (c.m_solverBodyIdB >= 0) {
+    body_b = &m_tmpSolverBodyPool[c.m_solverBodyIdB];
+    dvb += c.m_contactNormal2.dot(body_b->internalGetDeltaLinearVelocity()) +
+           c.m_relpos2CrossNormal.dot(body_b->internalGetDeltaAngularVelocity());
+  }
+  delta -= dva * c.m_jacDiagABInv;
+  delta -= dvb * c.m_jacDiagABInv;
+  const btScalar sum = btScalar(c.m_appliedImpulse) + delta;
+  if (sum < c.m_lowerLimit) {
+    delta = c.m_lowerLimit - c.m_appliedImpulse;
+    c.m_appliedImpulse = c.m_lowerLimit;
+  } else if (sum > c.m_upperLimit) {
+    delta = c.m_upperLimit - c.m_appliedImpulse;
+    c.m_appliedImpulse = c.m_upperLimit;
+  } else {
+    c.m_appliedImpulse = sum;
+  }
+  if (c.m_multiBodyA) {
+    const btScalar* u = unit + c.m_jacAindex;
+    btScalar* v = dv + c.m_deltaVelAindex;
+    for (int i = 0; i < na; ++i) v[i] += u[i] * delta;
+  } else if (body_a) {
+    body_a->internalApplyImpulse(c.m_contactNormal1 * body_a->internalGetInvMass(), c.m_angularComponentA, delta);
+  }
+  if (c.m_multiBodyB) {
+    const btScalar* u = unit + c.m_jacBindex;
+    btScalar* v = dv + c.m_deltaVelBindex;
+    for (int i = 0; i < nb; ++i) v[i] += u[i] * delta;
+  } else if (body_b) {
+    body_b->internalApplyImpulse(c.m_contactNormal2 * body_b->internalGetInvMass(), c.m_angularComponentB, delta);
+  }
+  return delta / c.m_jacDiagABInv;
+}
+
+btScalar SurfaceSolver::solveSingleIteration(int iteration, btCollisionObject** bodies, int num_bodies,
+                                             btPersistentManifold** manifolds, int num_manifolds,
+                                             btTypedConstraint** constraints, int num_constraints,
+                                             const btContactSolverInfo& info, btIDebugDraw* draw) {
+  const bool cone = (info.m_solverMode & SOLVER_USE_2_FRICTION_DIRECTIONS) &&
+                    !(info.m_solverMode & SOLVER_DISABLE_IMPLICIT_CONE_FRICTION);
+  own_iterations_ = !cone;
+  if (cone)
+    return btMultiBodyConstraintSolver::solveSingleIteration(iteration, bodies, num_bodies, manifolds, num_manifolds,
+                                                             constraints, num_constraints, info, draw);
+  // Bullet's rigid-body pass (rows between rigid bodies, typed constraints); with none it would only walk empty
+  // pools, and the order shuffles it may do touch no random state then
+  btScalar residual = 0;
+  if (num_constraints || m_tmpSolverNonContactConstraintPool.size() || m_tmpSolverContactConstraintPool.size() ||
+      m_tmpSolverContactFrictionConstraintPool.size() || m_tmpSolverContactRollingFrictionConstraintPool.size())
+    residual = btSequentialImpulseConstraintSolver::solveSingleIteration(
+        iteration, bodies, num_bodies, manifolds, num_manifolds, constraints, num_constraints, info, draw);
+
+  // joint rows (motors, limits), forwards and backwards on alternate iterations
+  btScalar joints = 0;
+  const int nj = m_multiBodyNonContactConstraints.size();
+  for (int k = 0; k < info.m_numNonContactInnerIterations; ++k) {
+    joints = 0;
+    for (int j = 0; j < nj; ++j) {
+      const btMultiBodySolverConstraint& c = m_multiBodyNonContactConstraints[iteration & 1 ? j : nj - 1 - j];
+      const btScalar r = resolve(c);
+      joints = btMax(joints, r * r);
+      if (c.m_multiBodyA) c.m_multiBodyA->setPosUpdated(false);
+      if (c.m_multiBodyB) c.m_multiBodyB->setPosUpdated(false);
+    }
+  }
+  residual = btMax(residual, joints);
+  if (iteration >= info.m_numIterations) {
+    // contact rows are not solved past the iteration count (Bullet's rule); their residual counts as 0
+    for (int j = 0; j < m_multiBodyNormalContactConstraints.size(); ++j) {
+      const btMultiBodySolverConstraint& c = m_multiBodyNormalContactConstraints[j];
+      if (c.m_multiBodyA) c.m_multiBodyA->setPosUpdated(false);
+      if (c.m_multiBodyB) c.m_multiBodyB->setPosUpdated(false);
+    }
+    return residual;
+  }
+  // normal rows
+  for (int j = 0; j < m_multiBodyNormalContactConstraints.size(); ++j) {
+    const btMultiBodySolverConstraint& c = m_multiBodyNormalContactConstraints[j];
+    const btScalar r = resolve(c);
+    residual = btMax(residual, r * r);
+    if (c.m_multiBodyA) c.m_multiBodyA->setPosUpdated(false);
+    if (c.m_multiBodyB) c.m_multiBodyB->setPosUpdated(false);
+  }
+  // friction rows, each bounded by its coefficient times its normal row's impulse
+  for (int j = 0; j < m_multiBodyFrictionContactConstraints.size(); ++j) {
+    btMultiBodySolverConstraint& c = m_multiBodyFrictionContactConstraints[j];
+    const btScalar normal = m_multiBodyNormalContactConstraints[c.m_frictionIndex].m_appliedImpulse;
+    if (normal > btScalar(0)) {
+      c.m_lowerLimit = -(c.m_friction * normal);
+      c.m_upperLimit = c.m_friction * normal;
+      const btScalar r = resolve(c);
+      residual = btMax(residual, r * r);
+      if (c.m_multiBodyA) c.m_multiBodyA->setPosUpdated(false);
+      if (c.m_multiBodyB) c.m_multiBodyB->setPosUpdated(false);
+    }
+  }
+  return residual;
+}
+
+
+// ---- row set-up with factored mass matrices -------------------------------------------------------------------
+
+bool SurfaceSolver::own_rows(const btContactSolverInfo& info) const {
+  const bool cone = (info.m_solverMode & SOLVER_USE_2_FRICTION_DIRECTIONS) &&
+                    !(info.m_solverMode & SOLVER_DISABLE_IMPLICIT_CONE_FRICTION);
+  return rows_ != RowSetup::bullet && !cone && !(info.m_solverMode & SOLVER_USE_ARTICULATED_WARMSTARTING);
+}
+
+const InverseMass* SurfaceSolver::inverse_mass(const btMultiBody* mb) {
+  if (rows_ != RowSetup::factored) return nullptr;
+  for (int i = 0; i < inverse_used_; ++i)
+    if (inverse_[i].body() == mb) return inverse_ok_[i] ? &inverse_[i] : nullptr;
+  if (inverse_used_ == static_cast<int>(inverse_.size())) {
+    inverse_.emplace_back();
+    inverse_ok_.push_back(0);
+  }
+  const int i = inverse_used_++;
+  inverse_ok_[i] = inverse_[i].build(*mb);
+  return inverse_ok_[i] ? &inverse_[i] : nullptr;
+}
+
+void SurfaceSolver::bind(btMultiBodySolverConstraint& c, btPersistentManifold* m, btManifoldPoint& cp,
+                         const btContactSolverInfo& info) {
+  auto* co0 = const_cast<btCollisionObject*>(m->getBody0());
+  auto* co1 = const_cast<btCollisionObject*>(m->getBody1());
+  const btMultiBodyLinkCollider* fcA = btMultiBodyLinkCollider::upcast(co0);
+  const btMultiBodyLinkCollider* fcB = btMultiBodyLinkCollider::upcast(co1);
+  c.m_orgConstraint = nullptr;
+  c.m_orgDofIndex = -1;
+  c.m_multiBodyA = fcA ? fcA->m_multiBody : nullptr;
+  c.m_multiBodyB = fcB ? fcB->m_multiBody : nullptr;
+  c.m_solverBodyIdA = fcA ? -1 : getOrInitSolverBody(*co0, info.m_timeStep);
+  c.m_solverBodyIdB = fcB ? -1 : getOrInitSolverBody(*co1, info.m_timeStep);
+  if (fcA) c.m_linkA = fcA->m_link;
+  if (fcB) c.m_linkB = fcB->m_link;
+  c.m_originalContactPoint = &cp;
+}
+
+// Bullet 3.24's setupMultiBodyContactConstraint, line for line in its arithmetic, but for the unit-impulse response of
+// a multibody side: M^-1 J^T from the factored matrix (InverseMass) instead of a Featherstone pass per row.
+void SurfaceSolver::setup_row(btMultiBodySolverConstraint& c, const btVector3& normal, btManifoldPoint& cp,
+                              const btContactSolverInfo& info, btScalar& relaxation, bool friction) {
+  btMultiBody* mbA = c.m_multiBodyA;
+  btMultiBody* mbB = c.m_multiBodyB;
+  const btVector3& pos1 = cp.getPositionWorldOnA();
+  const btVector3& pos2 = cp.getPositionWorldOnB();
+  btSolverBody* bodyA = mbA ? nullptr : &m_tmpSolverBodyPool[c.m_solverBodyIdA];
+  btSolverBody* bodyB = mbB ? nullptr : &m_tmpSolverBodyPool[c.m_solverBodyIdB];
+  btRigidBody* rb0 = mbA ? nullptr : bodyA->m_originalBody;
+  btRigidBody* rb1 = mbB ? nullptr : bodyB->m_originalBody;
+  btVector3 rel_pos1, rel_pos2;
+  if (bodyA) rel_pos1 = pos1 - bodyA->getWorldTransform().getOrigin();
+  if (bodyB) rel_pos2 = pos2 - bodyB->getWorldTransform().getOrigin();
+  relaxation = info.m_sor;
+  const btScalar inv_dt = btScalar(1) / info.m_timeStep;
+
+  // cfm = 1 / (dt kp + kd), erp = dt kp / (dt kp + kd)
+  btScalar cfm, erp;
+  if (friction) {
+    cfm = info.m_frictionCFM;
+    erp = info.m_frictionERP;
+  } else {
+    cfm = info.m_globalCfm;
+    erp = info.m_erp2;
+    if ((cp.m_contactPointFlags & BT_CONTACT_FLAG_HAS_CONTACT_CFM) ||
+        (cp.m_contactPointFlags & BT_CONTACT_FLAG_HAS_CONTACT_ERP)) {
+      if (cp.m_contactPointFlags & BT_CONTACT_FLAG_HAS_CONTACT_CFM) cfm = cp.m_contactCFM;
+      if (cp.m_contactPointFlags & BT_CONTACT_FLAG_HAS_CONTACT_ERP) erp = cp.m_contactERP;
+    } else if (cp.m_contactPointFlags & BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING) {
+      btScalar denom = info.m_timeStep * cp.m_combinedContactStiffness1 + cp.m_combinedContactDamping1;
+      if (denom < SIMD_EPSILON) denom = SIMD_EPSILON;
+      cfm = btScalar(1) / denom;
+      erp = (info.m_timeStep * cp.m_combinedContactStiffness1) / denom;
+    }
+  }
+  cfm *= inv_dt;
+
+  // One multibody side: its Jacobian (Bullet's), its response to a unit impulse along it.
+  auto side = [&](btMultiBody* mb, int link, const btVector3& pos, const btVector3& n, int* vel_index,
+                  int* jac_index) {
+    reserve_side(m_data, mb, vel_index, jac_index);
+    btScalar* jac = &m_data.m_jacobians[*jac_index];
+    mb->fillContactJacobianMultiDof(link, pos, n, jac, m_data.scratch_r, m_data.scratch_v, m_data.scratch_m);
+    response(mb, jac, &m_data.m_deltaVelocitiesUnitImpulse[*jac_index], m_data);
+  };
+
+  if (mbA) {
+    rel_pos1 = pos1 - (c.m_linkA < 0 ? mbA->getBasePos() : mbA->getLink(c.m_linkA).m_cachedWorldTransform.getOrigin());
+    side(mbA, c.m_linkA, pos1, normal, &c.m_deltaVelAindex, &c.m_jacAindex);
+    c.m_relpos1CrossNormal = rel_pos1.cross(normal);
+    c.m_contactNormal1 = normal;
+  } else {
+    const btVector3 torque_axis = rel_pos1.cross(normal);
+    c.m_relpos1CrossNormal = torque_axis;
+    c.m_contactNormal1 = normal;
+    c.m_angularComponentA =
+        rb0 ? rb0->getInvInertiaTensorWorld() * torque_axis * rb0->getAngularFactor() : btVector3(0, 0, 0);
+  }
+  if (mbB) {
+    rel_pos2 = pos2 - (c.m_linkB < 0 ? mbB->getBasePos() : mbB->getLink(c.m_linkB).m_cachedWorldTransform.getOrigin());
+    side(mbB, c.m_linkB, pos2, -normal, &c.m_deltaVelBindex, &c.m_jacBindex);
+    c.m_relpos2CrossNormal = -rel_pos2.cross(normal);
+    c.m_contactNormal2 = -normal;
+  } else {
+    const btVector3 torque_axis = rel_pos2.cross(normal);
+    c.m_relpos2CrossNormal = -torque_axis;
+    c.m_contactNormal2 = -normal;
+    c.m_angularComponentB =
+        rb1 ? rb1->getInvInertiaTensorWorld() * -torque_axis * rb1->getAngularFactor() : btVector3(0, 0, 0);
+  }
+
+  // effective inverse mass along the row
+  {
+    btScalar denom0 = 0, denom1 = 0;
+    if (mbA) {
+      const int ndof = mbA->getNumDofs() + 6;
+      const btScalar* j = &m_data.m_jacobians[c.m_jacAindex];
+      denom0 = add_dot(denom0, j, &m_data.m_deltaVelocitiesUnitImpulse[c.m_jacAindex], ndof);
+    } else if (rb0) {
+      const btVector3 vec = c.m_angularComponentA.cross(rel_pos1);
+      denom0 = rb0->getInvMass() + normal.dot(vec);
+    }
+    if (mbB) {
+      const int ndof = mbB->getNumDofs() + 6;
+      const btScalar* j = &m_data.m_jacobians[c.m_jacBindex];
+      denom1 = add_dot(denom1, j, &m_data.m_deltaVelocitiesUnitImpulse[c.m_jacBindex], ndof);
+    } else if (rb1) {
+      const btVector3 vec = (-c.m_angularComponentB).cross(rel_pos2);
+      denom1 = rb1->getInvMass() + normal.dot(vec);
+    }
+    const btScalar d = denom0 + denom1 + cfm;
+    // a singular or redundant row is disabled
+    c.m_jacDiagABInv = d > SIMD_EPSILON ? relaxation / d : btScalar(0);
+  }
+
+  // right-hand side: restitution, penetration and velocity error
+  btScalar restitution = 0, distance = 0;
+  if (!friction)
+    distance = cp.getDistance() + info.m_linearSlop;
+  else if (cp.m_contactPointFlags & BT_CONTACT_FLAG_FRICTION_ANCHOR)
+    distance = (cp.getPositionWorldOnA() - cp.getPositionWorldOnB()).dot(normal);
+  btScalar rel_vel = 0;
+  if (mbA) {
+    const int ndof = mbA->getNumDofs() + 6;
+    const btScalar* j = &m_data.m_jacobians[c.m_jacAindex];
+    rel_vel = add_dot(rel_vel, mbA->getVelocityVector(), j, ndof);
+  } else if (rb0) {
+    rel_vel += (rb0->getVelocityInLocalPoint(rel_pos1) +
+                (rb0->getTotalTorque() * rb0->getInvInertiaTensorWorld() * info.m_timeStep).cross(rel_pos1) +
+                rb0->getTotalForce() * rb0->getInvMass() * info.m_timeStep)
+                   .dot(c.m_contactNormal1);
+  }
+  if (mbB) {
+    const int ndof = mbB->getNumDofs() + 6;
+    const btScalar* j = &m_data.m_jacobians[c.m_jacBindex];
+    rel_vel = add_dot(rel_vel, mbB->getVelocityVector(), j, ndof);
+  } else if (rb1) {
+    rel_vel += (rb1->getVelocityInLocalPoint(rel_pos2) +
+                (rb1->getTotalTorque() * rb1->getInvInertiaTensorWorld() * info.m_timeStep).cross(rel_pos2) +
+                rb1->getTotalForce() * rb1->getInvMass() * info.m_timeStep)
+                   .dot(c.m_contactNormal2);
+  }
+  c.m_friction = cp.m_combinedFriction;
+  if (!friction) {
+    restitution = restitutionCurve(rel_vel, cp.m_combinedRestitution, info.m_restitutionVelocityThreshold);
+    if (restitution <= btScalar(0)) restitution = 0;
+  }
+  btScalar positional = 0;
+  btScalar velocity = restitution - rel_vel;
+  if (friction) {
+    positional = -distance * erp / info.m_timeStep;
+  } else if (distance > 0) {
+    velocity -= distance / info.m_timeStep;
+  } else {
+    positional = -distance * erp / info.m_timeStep;
+  }
+  const btScalar penetration_impulse = positional * c.m_jacDiagABInv;
+  const btScalar velocity_impulse = velocity * c.m_jacDiagABInv;
+  c.m_rhs = penetration_impulse + velocity_impulse;
+  c.m_rhsPenetration = 0;
+  if (!friction) {
+    c.m_lowerLimit = 0;
+    c.m_upperLimit = 1e10f;
+  } else {
+    c.m_lowerLimit = -c.m_friction;
+    c.m_upperLimit = c.m_friction;
+  }
+  c.m_cfm = cfm * c.m_jacDiagABInv;
+  // no articulated warm starting (own_rows): every row starts from zero, as in Bullet
+  c.m_appliedImpulse = 0;
+  c.m_appliedPushImpulse = 0;
+}
+
+btMultiBodySolverConstraint& SurfaceSolver::add_friction_row(const btVector3& dir, btPersistentManifold* m,
+                                                             int normal_index, btManifoldPoint& cp,
+                                                             btScalar relaxation, const btContactSolverInfo& info) {
+  btMultiBodySolverConstraint& c = m_multiBodyFrictionContactConstraints.expandNonInitializing();
+  c.m_frictionIndex = normal_index;
+  bind(c, m, cp, info);
+  setup_row(c, dir, cp, info, relaxation, true);
+  return c;
+}
+
+// Bullet 3.24's convertMultiBodyContact for a manifold without spinning or rolling friction: per point in contact a
+// normal row and friction rows along btPlaneSpace1 of the normal (two with SOLVER_USE_2_FRICTION_DIRECTIONS), each
+// scaled by the objects' anisotropic friction.
+void SurfaceSolver::convert_bullet(btPersistentManifold* m, const btContactSolverInfo& info) {
+  auto* co0 = const_cast<btCollisionObject*>(m->getBody0());
+  auto* co1 = const_cast<btCollisionObject*>(m->getBody1());
+  for (int j = 0; j < m->getNumContacts(); ++j) {
+    btManifoldPoint& cp = m->getContactPoint(j);
+    if (cp.getDistance() > m->getContactProcessingThreshold()) {
+      // not in contact: no warm start from it
+      cp.m_appliedImpulse = 0;
+      cp.m_prevRHS = 0;
+      continue;
+    }
+    btScalar relaxation;
+    const int normal_index = m_multiBodyNormalContactConstraints.size();
+    btMultiBodySolverConstraint& c = m_multiBodyNormalContactConstraints.expandNonInitializing();
+    bind(c, m, cp, info);
+    setup_row(c, cp.m_normalWorldOnB, cp, info, relaxation, false);
+    c.m_frictionIndex = m_multiBodyFrictionContactConstraints.size();
+    btPlaneSpace1(cp.m_normalWorldOnB, cp.m_lateralFrictionDir1, cp.m_lateralFrictionDir2);
+    cp.m_lateralFrictionDir1.normalize();
+    cp.m_lateralFrictionDir2.normalize();
+    applyAnisotropicFriction(co0, cp.m_lateralFrictionDir1, btCollisionObject::CF_ANISOTROPIC_FRICTION);
+    applyAnisotropicFriction(co1, cp.m_lateralFrictionDir1, btCollisionObject::CF_ANISOTROPIC_FRICTION);
+    add_friction_row(cp.m_lateralFrictionDir1, m, normal_index, cp, relaxation, info);
+    if (info.m_solverMode & SOLVER_USE_2_FRICTION_DIRECTIONS) {
+      applyAnisotropicFriction(co0, cp.m_lateralFrictionDir2, btCollisionObject::CF_ANISOTROPIC_FRICTION);
+      applyAnisotropicFriction(co1, cp.m_lateralFrictionDir2, btCollisionObject::CF_ANISOTROPIC_FRICTION);
+      add_friction_row(cp.m_lateralFrictionDir2, m, normal_index, cp, relaxation, info);
+    }
+    if ((info.m_solverMode & SOLVER_USE_2_FRICTION_DIRECTIONS) &&
+        (info.m_solverMode & SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION))
+      cp.m_contactPointFlags |= BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED;
+  }
+}
+
+
+SurfaceSolver* SurfaceSolver::converting() { return converting_; }
+
+void SurfaceSolver::response(btMultiBody* mb, const btScalar* jac, btScalar* delta, btMultiBodyJacobianData& data) {
+  // a side whose Jacobian is zero (a joint motor's second side) responds with zero, as Bullet's pass gives it
+  const int n = mb->getNumDofs() + 6;
+  bool zero = true;
+  for (int i = 0; i < n && zero; ++i) zero = jac[i] == 0;
+  if (zero && own_) {
+    for (int i = 0; i < n; ++i) delta[i] = 0;
+    return;
+  }
+  if (const InverseMass* inv = own_ ? inverse_mass(mb) : nullptr)
+    inv->solve(jac, delta);
+  else
+    mb->calcAccelerationDeltasMultiDof(jac, delta, data.scratch_r, data.scratch_v);
+}
+
+// Bullet 3.24's btMultiBodyJointMotor::createConstraintRows with fillMultiBodyConstraint written out for its case
+// (both sides the motor's own multibody, Jacobians from the constructor, no positional error), the same
+// arithmetic; only the unit-impulse response comes from SurfaceSolver::response.
+void JointMotor::createConstraintRows(btMultiBodyConstraintArray& rows, btMultiBodyJacobianData& data,
+                                      const btContactSolverInfo& info) {
+  SurfaceSolver* solver = SurfaceSolver::converting();
+  if (!solver || m_bodyA != m_bodyB) {
+    btMultiBodyJointMotor::createConstraintRows(rows, data, info);
+    return;
+  }
+  if (m_numDofsFinalized != m_jacSizeBoth) finalizeMultiDof();
+  if (m_numDofsFinalized != m_jacSizeBoth) return;
+  if (m_maxAppliedImpulse == 0.f) return;
+  btMultiBody* mb = m_bodyA;
+  const int ndof = mb->getNumDofs() + 6;
+  const btVector3 zero(0, 0, 0);
+  for (int row = 0; row < getNumRows(); ++row) {
+    btMultiBodySolverConstraint& c = rows.expandNonInitializing();
+    // the servo's target velocity: position term (kp, erp), velocity term (kd), clamped
+    const btScalar position = mb->getJointPosMultiDof(m_linkA)[0];
+    const btScalar velocity = mb->getJointVelMultiDof(m_linkA)[0];
+    const btScalar stabilisation = m_erp * (m_desiredPosition - position) / info.m_timeStep;
+    btScalar rhs = m_kp * stabilisation + velocity + m_kd * (m_desiredVelocity - velocity);
+    if (rhs > m_rhsClamp) rhs = m_rhsClamp;
+    if (rhs < -m_rhsClamp) rhs = -m_rhsClamp;
+
+    c.m_multiBodyA = c.m_multiBodyB = mb;
+    c.m_linkA = m_linkA;
+    c.m_linkB = m_linkB;
+    // both sides: Jacobian copied, response, torque axis (zero: no linear normal)
+    const btScalar* org[2] = {jacobianA(row), jacobianB(row)};
+    int* jac_index[2] = {&c.m_jacAindex, &c.m_jacBindex};
+    int* vel_index[2] = {&c.m_deltaVelAindex, &c.m_deltaVelBindex};
+    const int links[2] = {m_linkA, m_linkB};
+    btVector3 torque_axis[2];
+    for (int s = 0; s < 2; ++s) {
+      const btVector3 rel_pos = zero - (links[s] < 0 ? mb->getBasePos()
+                                                     : mb->getLink(links[s]).m_cachedWorldTransform.getOrigin());
+      reserve_side(data, mb, vel_index[s], jac_index[s]);
+      for (int i = 0; i < ndof; ++i) data.m_jacobians[*jac_index[s] + i] = org[s][i];
+      solver->response(mb, &data.m_jacobians[*jac_index[s]], &data.m_deltaVelocitiesUnitImpulse[*jac_index[s]], data);
+      torque_axis[s] = rel_pos.cross(zero);
+    }
+    c.m_relpos1CrossNormal = torque_axis[0];
+    c.m_contactNormal1 = zero;
+    c.m_relpos2CrossNormal = -torque_axis[1];
+    c.m_contactNormal2 = -zero;
+    const btScalar denom0 = add_dot(0, &data.m_jacobians[c.m_jacAindex],
+                                    &data.m_deltaVelocitiesUnitImpulse[c.m_jacAindex], ndof);
+    const btScalar denom1 = add_dot(0, &data.m_jacobians[c.m_jacBindex],
+                                    &data.m_deltaVelocitiesUnitImpulse[c.m_jacBindex], ndof);
+    const btScalar d = denom0 + denom1;
+    c.m_jacDiagABInv = d > SIMD_EPSILON ? btScalar(1) / d : btScalar(0);
+    btScalar rel_vel = 0;
+    for (int s = 0; s < 2; ++s)
+      rel_vel = add_dot(rel_vel, mb->getVelocityVector(), &data.m_jacobians[*jac_index[s]], ndof);
+    c.m_friction = 0;
+    c.m_appliedImpulse = 0;
+    c.m_appliedPushImpulse = 0;
+    const btScalar penetration = 0;
+    const btScalar positional = -penetration * info.m_erp / info.m_timeStep;
+    const btScalar velocity_error = (rhs - rel_vel) * btScalar(1.0);
+    c.m_rhs = positional * c.m_jacDiagABInv + velocity_error * c.m_jacDiagABInv;
+    c.m_rhsPenetration = 0;
+    c.m_cfm = 0;
+    c.m_lowerLimit = -m_maxAppliedImpulse;
+    c.m_upperLimit = m_maxAppliedImpulse;
+    c.m_orgConstraint = this;
+    c.m_orgDofIndex = row;
+    // the axis the row's impulse acts along, world frame (Bullet's joint feedback reads it)
+    const btMultibodyLink& l = mb->getLink(m_linkA);
+    if (l.m_jointType == btMultibodyLink::eRevolute) {
+      c.m_contactNormal1.setZero();
+      c.m_contactNormal2.setZero();
+      const btVector3 axis = quatRotate(l.m_cachedWorldTransform.getRotation(), l.m_axes[0].m_topVec);
+      c.m_relpos1CrossNormal = axis;
+      c.m_relpos2CrossNormal = -axis;
+    } else if (l.m_jointType == btMultibodyLink::ePrismatic) {
+      const btVector3 axis = quatRotate(l.m_cachedWorldTransform.getRotation(), l.m_axes[0].m_bottomVec);
+      c.m_contactNormal1 = axis;
+      c.m_contactNormal2 = -axis;
+      c.m_relpos1CrossNormal.setZero();
+      c.m_relpos2CrossNormal.setZero();
+    }
   }
 }
 

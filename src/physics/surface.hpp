@@ -6,12 +6,15 @@
 
 #include <btBulletDynamicsCommon.h>
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 
 #include <optional>
 #include <vector>
 
 #include "car_sim/model.hpp"
+#include "inverse_mass.hpp"
+#include "physics.hpp"
 
 namespace car_sim {
 namespace physics {
@@ -53,6 +56,15 @@ Surface link_surface(const GazeboLinkExt& g, const Eigen::Matrix3d& shape_to_obj
 // The surfaces of a collision object (set through its user pointer); nullptr for none.
 const SurfaceSet* surfaces_of(const btCollisionObject* o);
 
+// Bullet's joint motor (velocity servo with an impulse cap), its row set up as Bullet's
+// btMultiBodyJointMotor::createConstraintRows / fillMultiBodyConstraint do, the response from SurfaceSolver::response.
+class JointMotor : public btMultiBodyJointMotor {
+ public:
+  using btMultiBodyJointMotor::btMultiBodyJointMotor;
+  void createConstraintRows(btMultiBodyConstraintArray& rows, btMultiBodyJacobianData& data,
+                            const btContactSolverInfo& info) override;
+};
+
 // A robot body's collider: a multibody link collider with Gazebo's self-collision rule. Two bodies of one
 // robot collide when either self-collides, except a body and its parent (the joint between them).
 class SurfaceCollider : public btMultiBodyLinkCollider {
@@ -70,13 +82,61 @@ class SurfaceSolver : public btMultiBodyConstraintSolver {
  public:
   void convertContacts(btPersistentManifold** manifolds, int count, const btContactSolverInfo& info) override;
 
+  void set_row_setup(RowSetup rows) { rows_ = rows; }
+
+  // The solver converting rows on this thread now (its joint constraints' rows are being made), or nullptr.
+  static SurfaceSolver* converting();
+  // A row's unit-impulse response delta = M^-1 jac of mb: from the factored matrix when this solve sets up its own
+  // rows, else Bullet's Featherstone pass.
+  void response(btMultiBody* mb, const btScalar* jac, btScalar* delta, btMultiBodyJacobianData& data);
+
  protected:
   btScalar solveGroupCacheFriendlyFinish(btCollisionObject** bodies, int count,
                                          const btContactSolverInfo& info) override;
+  // Bullet's PGS iteration over the multibody rows (btMultiBodyConstraintSolver::solveSingleIteration: joint
+  // rows, then normal rows, then friction rows bounded by their normal row's impulse), the same arithmetic in
+  // the same order on raw arrays, so the same bits; Bullet's rigid-body pass only when it has rows. Modes this
+  // does not cover (implicit cone friction) go to Bullet's.
+  btScalar solveGroupCacheFriendlyIterations(btCollisionObject** bodies, int num_bodies,
+                                             btPersistentManifold** manifolds, int num_manifolds,
+                                             btTypedConstraint** constraints, int num_constraints,
+                                             const btContactSolverInfo& info, btIDebugDraw* draw) override;
+  btScalar solveSingleIteration(int iteration, btCollisionObject** bodies, int num_bodies,
+                                btPersistentManifold** manifolds, int num_manifolds, btTypedConstraint** constraints,
+                                int num_constraints, const btContactSolverInfo& info, btIDebugDraw* draw) override;
 
  private:
   // rules: the pair needs Gazebo's surface rules; else it came here only for having no friction at all
   void convert(btPersistentManifold* m, const btContactSolverInfo& info, bool rules);
+  // One row (Bullet's resolveSingleConstraintRowGeneric); returns its velocity change, Bullet's residual term.
+  btScalar resolve(const btMultiBodySolverConstraint& c);
+
+  // ---- row set-up with factored mass matrices (docs/COMPAT-physics.md "Row set-up") ----
+  // Whether this solve's contact rows are set up by car (Bullet's rules that car's set-up covers: no articulated
+  // warm starting, no implicit cone friction).
+  bool own_rows(const btContactSolverInfo& info) const;
+  // The factored mass matrix of mb for this solve (built on first use); nullptr: Bullet's pass for mb.
+  const InverseMass* inverse_mass(const btMultiBody* mb);
+  // Bullet's setupMultiBodyContactConstraint (no articulated warm starting), each multibody side's unit-impulse
+  // response M^-1 J^T from the factored matrix.
+  void setup_row(btMultiBodySolverConstraint& c, const btVector3& normal, btManifoldPoint& cp,
+                 const btContactSolverInfo& info, btScalar& relaxation, bool friction);
+  // A friction row as Bullet's addMultiBodyFrictionConstraint, set up by setup_row.
+  btMultiBodySolverConstraint& add_friction_row(const btVector3& dir, btPersistentManifold* m, int normal_index,
+                                                btManifoldPoint& cp, btScalar relaxation,
+                                                const btContactSolverInfo& info);
+  // Bullet's convertMultiBodyContact with rows from setup_row (manifolds without spinning or rolling friction).
+  void convert_bullet(btPersistentManifold* m, const btContactSolverInfo& info);
+  // A row's bodies and link indices, as Bullet's converters fill them.
+  void bind(btMultiBodySolverConstraint& c, btPersistentManifold* m, btManifoldPoint& cp, const btContactSolverInfo& info);
+
+  RowSetup rows_ = RowSetup::factored;
+  bool own_iterations_ = false;  // this solve's iterations ran car's pass (the multibodies' changes are held back)
+  std::vector<std::pair<btMultiBody*, int>> touched_;  // multibodies with rows, their velocity-change offsets
+  bool own_ = false;                 // this solve sets up its contact rows itself
+  std::vector<InverseMass> inverse_;  // reused between solves
+  int inverse_used_ = 0;
+  std::vector<char> inverse_ok_;
   btAlignedObjectArray<btPersistentManifold*> bullet_;
   btAlignedObjectArray<btPersistentManifold*> car_;
   btAlignedObjectArray<btPersistentManifold*> frictionless_;

@@ -1,0 +1,145 @@
+// The joint-space mass matrix of a Bullet multibody, built from Bullet's cached frames and factored (inverse_mass.hpp).
+#include "inverse_mass.hpp"
+
+#include <cmath>
+#include <utility>
+
+namespace car_sim {
+namespace physics {
+
+bool InverseMass::build(const btMultiBody& mb) {
+  mb_ = &mb;
+  const int links = mb.getNumLinks();
+  n_ = 6 + mb.getNumDofs();
+  if (mb.isBaseKinematic() || mb.isUsingGlobalVelocities()) return false;
+  for (int i = 0; i < links; ++i)
+    if (mb.isLinkKinematic(i)) return false;
+  // a static base does not move (Bullet's pass gives it no acceleration): its rows are left out
+  const bool fixed = mb.isBaseStaticOrKinematic();
+  off_ = fixed ? 6 : 0;
+  const int m = n_ - off_;
+  l_.assign(static_cast<size_t>(m) * m, 0.0);
+
+  // Frames of the bodies: rotation frame -> world and centre of mass [m], world frame. Bullet's base frame sits at
+  // the base's centre of mass; link i's at its own, m_cachedRVector (frame i) from its parent's.
+  const int bodies = links + 1;
+  rot_.resize(bodies);
+  com_.resize(bodies);
+  rot_[0] = btMatrix3x3(mb.getWorldToBaseRot()).transpose();
+  com_[0] = mb.getBasePos();
+  for (int i = 0; i < links; ++i) {
+    const btMultibodyLink& l = mb.getLink(i);
+    const int p = l.m_parent + 1;
+    // m_cachedRotParentToThis turns parent-frame vectors into frame i:
+    // frame i -> world = (parent -> world) * its inverse
+    rot_[i + 1] = rot_[p] * btMatrix3x3(l.m_cachedRotParentToThis).transpose();
+    com_[i + 1] = com_[p] + rot_[i + 1] * l.m_cachedRVector;
+  }
+
+  // M = sum over bodies of J_b^T diag(m_b, I_b world) J_b, J_b: the body's angular velocity w and centre-of-mass
+  // velocity u per generalised velocity. A base rotation w = e moves the body's centre of mass by e x r (r from the
+  // base's), a base translation by e; so the base block is sum (I_w + m [r]x^T [r]x, m [r]x; m 1), and a joint
+  // column u, w meets the base's with m r x u + I_w w (rotation) and m u (translation). Only the joints of the
+  // body and its ancestors move it.
+  w_.resize(n_);
+  u_.resize(n_);
+  cols_.resize(n_);
+  double* M = l_.data();
+  // lower triangle: row >= column, indices of the full 6 + dofs layout
+  auto add = [&](int row, int col, double x) {
+    if (col > row) std::swap(row, col);
+    M[static_cast<size_t>(row - off_) * m + (col - off_)] += x;
+  };
+  for (int b = 0; b < bodies; ++b) {
+    if (b == 0 && fixed) continue;
+    const btScalar mass = b == 0 ? mb.getBaseMass() : mb.getLink(b - 1).m_mass;
+    const btVector3& inertia = b == 0 ? mb.getBaseInertia() : mb.getLink(b - 1).m_inertiaLocal;
+    // inertia about the centre of mass, world frame
+    const btMatrix3x3& R = rot_[b];
+    const btMatrix3x3 iw = R.scaled(inertia) * R.transpose();
+    // the joints from the body up to the base: a unit rate of dof d of link j turns the body with a_d about link
+    // j's centre of mass and moves that point with b_d (Bullet's spatial axis, frame j)
+    int k = 0;
+    for (int j = b - 1; j >= 0; j = mb.getLink(j).m_parent) {
+      const btMultibodyLink& l = mb.getLink(j);
+      const btVector3 r = com_[b] - com_[j + 1];
+      for (int d = 0; d < l.m_dofCount; ++d) {
+        const btVector3 a = rot_[j + 1] * l.m_axes[d].m_topVec;
+        const btVector3 v = rot_[j + 1] * l.m_axes[d].m_bottomVec;
+        cols_[k] = 6 + l.m_dofOffset + d;
+        w_[k] = a;
+        u_[k] = v + a.cross(r);
+        ++k;
+      }
+    }
+    const btVector3 r = com_[b] - com_[0];
+    for (int p = 0; p < k; ++p) {
+      const btVector3 iwp = iw * w_[p];
+      for (int q = 0; q < k; ++q)
+        if (cols_[q] <= cols_[p]) add(cols_[p], cols_[q], mass * u_[p].dot(u_[q]) + iwp.dot(w_[q]));
+      if (!fixed) {
+        const btVector3 rot = mass * r.cross(u_[p]) + iwp;
+        for (int a = 0; a < 3; ++a) {
+          add(cols_[p], a, rot[a]);
+          add(cols_[p], 3 + a, mass * u_[p][a]);
+        }
+      }
+    }
+    if (!fixed) {
+      const double rr = r.length2();
+      for (int a = 0; a < 3; ++a) {
+        for (int c = 0; c <= a; ++c) add(a, c, iw[a][c] + mass * ((a == c ? rr : 0.0) - r[a] * r[c]));
+        btVector3 e(0, 0, 0);
+        e[a] = 1;
+        // M[v_c, w_a] = m (e_a x r)_c
+        const btVector3 exr = e.cross(r);
+        for (int c = 0; c < 3; ++c) add(3 + c, a, mass * exr[c]);
+        add(3 + a, 3 + a, mass);
+      }
+    }
+  }
+
+  // Cholesky, in place: M = L L^T
+  for (int j = 0; j < m; ++j) {
+    double* rj = &l_[static_cast<size_t>(j) * m];
+    double d = rj[j];
+    for (int k = 0; k < j; ++k) d -= rj[k] * rj[k];
+    if (!(d > 0.0)) return false;
+    d = std::sqrt(d);
+    rj[j] = d;
+    for (int i = j + 1; i < m; ++i) {
+      double* ri = &l_[static_cast<size_t>(i) * m];
+      double s = ri[j];
+      for (int k = 0; k < j; ++k) s -= ri[k] * rj[k];
+      ri[j] = s / d;
+    }
+  }
+  inv_diag_.resize(m);
+  for (int j = 0; j < m; ++j) inv_diag_[j] = 1.0 / l_[static_cast<size_t>(j) * m + j];
+  return true;
+}
+
+void InverseMass::solve(const btScalar* f, btScalar* x) const {
+  const int m = n_ - off_;
+  for (int i = 0; i < off_; ++i) x[i] = 0;
+  btScalar* y = x + off_;
+  const double* l = l_.data();
+  const double* inv = inv_diag_.data();
+  // L y = f
+  for (int i = 0; i < m; ++i) {
+    const double* ri = l + static_cast<size_t>(i) * m;
+    double s = f[off_ + i];
+    for (int k = 0; k < i; ++k) s -= ri[k] * y[k];
+    y[i] = s * inv[i];
+  }
+  // L^T x = y, by columns of L: once x_i is known, take its share out of the rows above
+  for (int i = m - 1; i >= 0; --i) {
+    const double* ri = l + static_cast<size_t>(i) * m;
+    const double xi = y[i] * inv[i];
+    y[i] = xi;
+    for (int k = 0; k < i; ++k) y[k] -= ri[k] * xi;
+  }
+}
+
+}  // namespace physics
+}  // namespace car_sim

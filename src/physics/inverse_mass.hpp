@@ -1,0 +1,44 @@
+// The joint-space mass matrix of a Bullet multibody, factored once per step, for the contact rows' unit-impulse
+// responses (private to the core; docs/COMPAT-physics.md "Row set-up"). Bullet computes each row's response
+// M^-1 J^T with a pass of Featherstone's algorithm over the whole tree (btMultiBody::calcAccelerationDeltasMultiDof,
+// two thirds of a car's row set-up); here M is built once from the same cached frames Bullet's pass uses, factored
+// (Cholesky), and each row costs two triangular solves.
+#pragma once
+
+#include <BulletDynamics/Featherstone/btMultiBody.h>
+
+#include <vector>
+
+namespace car_sim {
+namespace physics {
+
+class InverseMass {
+ public:
+  // M of mb's present configuration, in Bullet's generalised velocities (base angular and linear velocity of the
+  // base's centre of mass, world frame, then the joint rates), from the frames Bullet's free-motion pass cached
+  // (m_cachedRotParentToThis, m_cachedRVector, the joint axes). false (use Bullet's pass) for a kinematic base or
+  // link, or a matrix that is not positive definite.
+  bool build(const btMultiBody& mb);
+
+  // x = M^-1 f for 6 + dofs entries (Bullet's layout: base torque [N m] and force [N], world frame, then the joint
+  // efforts); a fixed base gets zero base entries, as in Bullet's pass.
+  void solve(const btScalar* f, btScalar* x) const;
+
+  const btMultiBody* body() const { return mb_; }
+
+ private:
+  const btMultiBody* mb_ = nullptr;
+  int n_ = 0;    // 6 + dofs
+  int off_ = 0;  // 6 with a fixed base: its rows and columns are left out of M
+  std::vector<double> l_;  // lower Cholesky factor of M[off_.., off_..], row major, (n_-off_)^2
+  std::vector<double> inv_diag_;  // 1 / its diagonal
+  // per body (0 the base, 1 + i link i): world rotation (frame to world) and centre of mass [m]
+  std::vector<btMatrix3x3> rot_;
+  std::vector<btVector3> com_;
+  // per generalised velocity column and body: angular [rad/s] and linear [m/s] world velocity of that body
+  std::vector<btVector3> w_, u_;
+  std::vector<int> cols_;  // a body's non-zero columns
+};
+
+}  // namespace physics
+}  // namespace car_sim
