@@ -2,6 +2,10 @@
 
 #include <embree3/rtcore.h>
 
+#include "car_sim/parallel.hpp"
+#include "scene_impl.hpp"
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -10,14 +14,7 @@ namespace car_sim {
 
 namespace {
 
-// An analytic primitive for Embree's user geometry, in its own frame (cylinder axis z).
-struct Primitive {
-  int kind;           // 0 sphere, 1 cylinder
-  float radius;       // [m]
-  float half_length;  // [m], cylinder
-  Eigen::Matrix3f R;  // primitive frame in the body frame
-  Eigen::Vector3f t;
-};
+using raycast_detail::Primitive;
 
 void bounds(const RTCBoundsFunctionArguments* args) {
   const Primitive& p = *static_cast<const Primitive*>(args->geometryUserPtr);
@@ -33,51 +30,7 @@ void bounds(const RTCBoundsFunctionArguments* args) {
   b->upper_z = p.t.z() + e.z();
 }
 
-// Nearest t in (t0, t1) where the ray enters the primitive, with the outward normal (primitive frame).
-bool hit_primitive(const Primitive& p, const Eigen::Vector3f& o, const Eigen::Vector3f& d, float t0, float t1,
-                   float* t_out, Eigen::Vector3f* n_out) {
-  float best = t1;
-  bool found = false;
-  auto consider = [&](float t, const Eigen::Vector3f& n) {
-    if (t > t0 && t < best) {
-      best = t;
-      *n_out = n;
-      found = true;
-    }
-  };
-  if (p.kind == 0) {
-    const float b = o.dot(d), c = o.squaredNorm() - p.radius * p.radius;
-    const float disc = b * b - c;
-    if (disc < 0) return false;
-    const float s = std::sqrt(disc);
-    for (float t : {-b - s, -b + s}) consider(t, (o + t * d) / p.radius);
-  } else {
-    // side: x^2 + y^2 = r^2 with |z| <= h
-    const float a = d.x() * d.x() + d.y() * d.y();
-    if (a > 0) {
-      const float b = o.x() * d.x() + o.y() * d.y();
-      const float c = o.x() * o.x() + o.y() * o.y() - p.radius * p.radius;
-      const float disc = b * b - a * c;
-      if (disc >= 0) {
-        const float s = std::sqrt(disc);
-        for (float t : {(-b - s) / a, (-b + s) / a}) {
-          const Eigen::Vector3f q = o + t * d;
-          if (std::abs(q.z()) <= p.half_length) consider(t, Eigen::Vector3f(q.x(), q.y(), 0) / p.radius);
-        }
-      }
-    }
-    // caps: z = +-h with x^2 + y^2 <= r^2
-    if (d.z() != 0) {
-      for (float zc : {-p.half_length, p.half_length}) {
-        const float t = (zc - o.z()) / d.z();
-        const Eigen::Vector3f q = o + t * d;
-        if (q.x() * q.x() + q.y() * q.y() <= p.radius * p.radius) consider(t, Eigen::Vector3f(0, 0, zc > 0 ? 1.f : -1.f));
-      }
-    }
-  }
-  if (found) *t_out = best;
-  return found;
-}
+using raycast_detail::hit_primitive;
 
 void intersect(const RTCIntersectFunctionNArguments* args) {
   const Primitive& p = *static_cast<const Primitive*>(args->geometryUserPtr);
@@ -151,22 +104,54 @@ void add_triangles(std::vector<Eigen::Vector3f>* v, std::vector<unsigned>* idx, 
 
 }  // namespace
 
-struct RayScene::Impl {
-  RTCDevice device = nullptr;
-  RTCScene top = nullptr;
-  struct Body {
-    RTCScene scene = nullptr;
-    RTCGeometry instance = nullptr;
-    unsigned inst_id = 0;
-    SurfaceLook look;
-    Eigen::Matrix3f rotation = Eigen::Matrix3f::Identity();  // body in world, for normals
-    bool dirty = true;
+namespace raycast_detail {
+
+bool hit_primitive(const Primitive& p, const Eigen::Vector3f& o, const Eigen::Vector3f& d, float t0, float t1,
+                   float* t_out, Eigen::Vector3f* n_out) {
+  float best = t1;
+  bool found = false;
+  auto consider = [&](float t, const Eigen::Vector3f& n) {
+    if (t > t0 && t < best) {
+      best = t;
+      *n_out = n;
+      found = true;
+    }
   };
-  std::vector<Body> bodies;
-  std::vector<std::unique_ptr<Primitive>> primitives;
-  std::vector<int> body_of_instance;
-  bool top_dirty = true;
-};
+  if (p.kind == 0) {
+    const float b = o.dot(d), c = o.squaredNorm() - p.radius * p.radius;
+    const float disc = b * b - c;
+    if (disc < 0) return false;
+    const float s = std::sqrt(disc);
+    for (float t : {-b - s, -b + s}) consider(t, (o + t * d) / p.radius);
+  } else {
+    // side: x^2 + y^2 = r^2 with |z| <= h
+    const float a = d.x() * d.x() + d.y() * d.y();
+    if (a > 0) {
+      const float b = o.x() * d.x() + o.y() * d.y();
+      const float c = o.x() * o.x() + o.y() * o.y() - p.radius * p.radius;
+      const float disc = b * b - a * c;
+      if (disc >= 0) {
+        const float s = std::sqrt(disc);
+        for (float t : {(-b - s) / a, (-b + s) / a}) {
+          const Eigen::Vector3f q = o + t * d;
+          if (std::abs(q.z()) <= p.half_length) consider(t, Eigen::Vector3f(q.x(), q.y(), 0) / p.radius);
+        }
+      }
+    }
+    // caps: z = +-h with x^2 + y^2 <= r^2
+    if (d.z() != 0) {
+      for (float zc : {-p.half_length, p.half_length}) {
+        const float t = (zc - o.z()) / d.z();
+        const Eigen::Vector3f q = o + t * d;
+        if (q.x() * q.x() + q.y() * q.y() <= p.radius * p.radius) consider(t, Eigen::Vector3f(0, 0, zc > 0 ? 1.f : -1.f));
+      }
+    }
+  }
+  if (found) *t_out = best;
+  return found;
+}
+
+}  // namespace raycast_detail
 
 RayScene::RayScene() : impl_(std::make_unique<Impl>()) {
   impl_->device = rtcNewDevice("threads=1");
@@ -213,6 +198,7 @@ int RayScene::add_body(const std::vector<std::pair<Shape, Eigen::Isometry3d>>& s
       rtcCommitGeometry(g);
       rtcAttachGeometry(b.scene, g);
       rtcReleaseGeometry(g);
+      b.prims.push_back(p.get());
       impl_->primitives.push_back(std::move(p));
     }
   }
@@ -230,6 +216,21 @@ int RayScene::add_body(const std::vector<std::pair<Shape, Eigen::Isometry3d>>& s
     rtcReleaseGeometry(g);
   }
   rtcCommitScene(b.scene);
+  // the coherent kernels' copy, and the bounding sphere about the centre of the geometry's box
+  Eigen::AlignedBox3f box;
+  for (const auto& v : verts) box.extend(v);
+  for (const auto* p : b.prims) {
+    box.extend(p->t - Eigen::Vector3f::Constant(p->bound()));
+    box.extend(p->t + Eigen::Vector3f::Constant(p->bound()));
+  }
+  if (!box.isEmpty()) {
+    b.centre = box.center();
+    for (const auto& v : verts) b.radius = std::max(b.radius, (v - b.centre).norm());
+    for (const auto* p : b.prims) b.radius = std::max(b.radius, (p->t - b.centre).norm() + p->bound());
+    b.radius *= 1.0001f;  // [m], rounding margin
+  }
+  b.verts = std::move(verts);
+  b.idx = std::move(idx);
   b.instance = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_INSTANCE);
   rtcSetGeometryInstancedScene(b.instance, b.scene);
   b.inst_id = rtcAttachGeometry(impl_->top, b.instance);
@@ -250,6 +251,7 @@ void RayScene::set_pose(int body, const Eigen::Isometry3d& pose) {
   for (int r = 0; r < 3; ++r) xfm[9 + r] = static_cast<float>(pose.translation()(r));
   rtcSetGeometryTransform(b.instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
   b.rotation = pose.linear().cast<float>();
+  b.pose = pose;
   b.dirty = true;
   impl_->top_dirty = true;
 }
@@ -277,57 +279,65 @@ void RayScene::cast(const Eigen::Vector3d& origin, const Eigen::Matrix3d& rotati
   const int packets = (n + 15) / 16;
   const float inf = std::numeric_limits<float>::infinity();
   const Impl& im = *impl_;
-  // Threads only for camera-sized batches (a 360-ray scan is cheaper than the fork and join); chunks of 64 packets
-  // handed out as threads come free, so a thread the OS runs late (a busy machine) does not hold the rest back.
+  // Threads only for camera-sized batches (a 360-ray scan is cheaper than handing it out); chunks of 64 packets
+  // claimed as threads come free (car's pool, parallel.hpp: a thread the OS runs late is not waited for).
   // Each ray's result depends only on that ray: the output is the same for any thread count.
-#pragma omp parallel for schedule(dynamic, 64) if (packets >= 256)
-  for (int p = 0; p < packets; ++p) {
-    alignas(64) RTCRayHit16 rh;
-    alignas(64) int valid[16];
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    const int base = p * 16;
-    const int count = std::min(16, n - base);
-    for (int k = 0; k < 16; ++k) {
-      const int j = base + (k < count ? k : count - 1);
-      const float* d = directions + 3 * j;
-      valid[k] = k < count ? -1 : 0;
-      rh.ray.org_x[k] = ox;
-      rh.ray.org_y[k] = oy;
-      rh.ray.org_z[k] = oz;
-      rh.ray.dir_x[k] = R[0] * d[0] + R[1] * d[1] + R[2] * d[2];
-      rh.ray.dir_y[k] = R[3] * d[0] + R[4] * d[1] + R[5] * d[2];
-      rh.ray.dir_z[k] = R[6] * d[0] + R[7] * d[1] + R[8] * d[2];
-      rh.ray.tnear[k] = t_near_per_ray ? t_near[j] : t_near[0];
-      rh.ray.tfar[k] = t_far;
-      rh.ray.mask[k] = 0xFFFFFFFF;
-      rh.ray.flags[k] = 0;
-      rh.ray.time[k] = 0.f;
-      rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-    }
-    rtcIntersect16(valid, im.top, &ctx, &rh);
-    for (int k = 0; k < count; ++k) {
-      RayHit& h = out[base + k];
-      if (rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) {
-        h.distance = inf;
-        h.normal.setZero();
-        h.body = -1;
-        continue;
+  constexpr int kChunk = 64;
+  auto chunk = [&](int ci) {
+    for (int p = ci * kChunk; p < std::min(packets, (ci + 1) * kChunk); ++p) {
+      alignas(64) RTCRayHit16 rh;
+      alignas(64) int valid[16];
+      RTCIntersectContext ctx;
+      rtcInitIntersectContext(&ctx);
+      const int base = p * 16;
+      const int count = std::min(16, n - base);
+      for (int k = 0; k < 16; ++k) {
+        const int j = base + (k < count ? k : count - 1);
+        const float* d = directions + 3 * j;
+        valid[k] = k < count ? -1 : 0;
+        rh.ray.org_x[k] = ox;
+        rh.ray.org_y[k] = oy;
+        rh.ray.org_z[k] = oz;
+        rh.ray.dir_x[k] = R[0] * d[0] + R[1] * d[1] + R[2] * d[2];
+        rh.ray.dir_y[k] = R[3] * d[0] + R[4] * d[1] + R[5] * d[2];
+        rh.ray.dir_z[k] = R[6] * d[0] + R[7] * d[1] + R[8] * d[2];
+        rh.ray.tnear[k] = t_near_per_ray ? t_near[j] : t_near[0];
+        rh.ray.tfar[k] = t_far;
+        rh.ray.mask[k] = 0xFFFFFFFF;
+        rh.ray.flags[k] = 0;
+        rh.ray.time[k] = 0.f;
+        rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
       }
-      h.distance = rh.ray.tfar[k];
-      const int body = im.body_of_instance[rh.hit.instID[0][k]];
-      h.body = body;
-      // the hit normal is in the instance's frame: into the world, unit, facing the ray
-      const Eigen::Matrix3f& B = im.bodies[body].rotation;
-      const float nx = rh.hit.Ng_x[k], ny = rh.hit.Ng_y[k], nz = rh.hit.Ng_z[k];
-      float wx = B(0, 0) * nx + B(0, 1) * ny + B(0, 2) * nz;
-      float wy = B(1, 0) * nx + B(1, 1) * ny + B(1, 2) * nz;
-      float wz = B(2, 0) * nx + B(2, 1) * ny + B(2, 2) * nz;
-      float s = 1.f / std::sqrt(wx * wx + wy * wy + wz * wz);
-      if (wx * rh.ray.dir_x[k] + wy * rh.ray.dir_y[k] + wz * rh.ray.dir_z[k] > 0) s = -s;
-      h.normal = Eigen::Vector3f(wx * s, wy * s, wz * s);
+      rtcIntersect16(valid, im.top, &ctx, &rh);
+      for (int k = 0; k < count; ++k) {
+        RayHit& h = out[base + k];
+        if (rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) {
+          h.distance = inf;
+          h.normal.setZero();
+          h.body = -1;
+          continue;
+        }
+        h.distance = rh.ray.tfar[k];
+        const int body = im.body_of_instance[rh.hit.instID[0][k]];
+        h.body = body;
+        // the hit normal is in the instance's frame: into the world, unit, facing the ray
+        const Eigen::Matrix3f& B = im.bodies[body].rotation;
+        const float nx = rh.hit.Ng_x[k], ny = rh.hit.Ng_y[k], nz = rh.hit.Ng_z[k];
+        float wx = B(0, 0) * nx + B(0, 1) * ny + B(0, 2) * nz;
+        float wy = B(1, 0) * nx + B(1, 1) * ny + B(1, 2) * nz;
+        float wz = B(2, 0) * nx + B(2, 1) * ny + B(2, 2) * nz;
+        float s = 1.f / std::sqrt(wx * wx + wy * wy + wz * wz);
+        if (wx * rh.ray.dir_x[k] + wy * rh.ray.dir_y[k] + wz * rh.ray.dir_z[k] > 0) s = -s;
+        h.normal = Eigen::Vector3f(wx * s, wy * s, wz * s);
+      }
     }
+  };
+  const int chunks = (packets + kChunk - 1) / kChunk;
+  if (packets >= 256) {
+    parallel_for(chunks, chunk);
+  } else {
+    for (int ci = 0; ci < chunks; ++ci) chunk(ci);
   }
 }
 

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstring>
 #include <limits>
 #include <set>
 
@@ -119,36 +121,162 @@ CameraPlugin::CameraPlugin(const PluginConfig& c, const std::string& robot, uint
   noise_stddev_ = c.number("camera/noise/stddev");
   // one ray per pixel through its centre; sensor frame x forward, y left, z up
   const size_t n = static_cast<size_t>(w_) * h_;
-  pixel_.reserve(n);
-  for (int tv = 0; tv < h_; tv += 4)
-    for (int tu = 0; tu < w_; tu += 4)
-      for (int v = tv; v < std::min(tv + 4, h_); ++v)
-        for (int u = tu; u < std::min(tu + 4, w_); ++u) pixel_.push_back(v * w_ + u);
+  pinhole_ = Pinhole{w_, h_, proto_.f, proto_.cx, proto_.cy, near_};
   dirs_.resize(3 * n);
-  cos_.resize(n);
-  t_near_.resize(n);
   double min_cos = 1.0;
   for (size_t k = 0; k < n; ++k) {
-    const int u = pixel_[k] % w_, v = pixel_[k] / w_;
+    const int u = static_cast<int>(k % w_), v = static_cast<int>(k / w_);
     const Eigen::Vector3d d = Eigen::Vector3d(proto_.f, -(u - proto_.cx), -(v - proto_.cy)).normalized();
     dirs_[3 * k] = static_cast<float>(d.x());
     dirs_[3 * k + 1] = static_cast<float>(d.y());
     dirs_[3 * k + 2] = static_cast<float>(d.z());
-    cos_[k] = static_cast<float>(d.x());
-    t_near_[k] = static_cast<float>(near_ / d.x());  // the near clip plane, along this ray
     min_cos = std::min(min_cos, d.x());
   }
   t_far_ = static_cast<float>(far_ / min_cos);
   hits_.resize(n);
-  rgb_.resize(3 * n);
+  if (gaussian_) rgb_.resize(3 * n);
 }
+
+namespace {
+
+// What shading a row needs: the frame's hits, rays and outputs (whole-frame pointers), the lighting and cutoffs.
+struct Shading {
+  const RayHit* hits;          // per pixel
+  const float* dirs;           // x y z per pixel, sensor frame; x is the depth per unit distance
+  const float* col_factor;     // (u - cx) / f per column
+  const Eigen::Vector3f* mat;  // material colour per body
+  Eigen::Vector3f light, bg;   // unit direction towards the light (world frame); background colour
+  float ambient, far_clip, cut_lo, cut_hi, f, cy;
+  int w;
+  uint8_t* image;              // in the image's format
+  float* depth;                // with kDepth: depth, points and point_rgb
+  float* points;
+  uint8_t* point_rgb;
+  float* noisy_rgb;            // with kNoisy: [0, 1] r g b per pixel instead of image and point_rgb
+};
+
+// The hits of a RayHit after its distance: normal and body, 16 bytes (compared as two words).
+static_assert(offsetof(RayHit, normal) == 4 && offsetof(RayHit, body) == 16 && sizeof(RayHit) == 20,
+              "RayHit layout");
+
+// A colour's bytes: [0, 1] to 0..255 rounded, and its grey (mono8).
+struct PixelBytes {
+  uint8_t r, g, b, grey;
+};
+
+inline PixelBytes pixel_bytes(float rf, float gf, float bf) {
+  PixelBytes c;
+  c.r = static_cast<uint8_t>(rf * 255.f + 0.5f);
+  c.g = static_cast<uint8_t>(gf * 255.f + 0.5f);
+  c.b = static_cast<uint8_t>(bf * 255.f + 0.5f);
+  c.grey = static_cast<uint8_t>(0.299f * c.r + 0.587f * c.g + 0.114f * c.b + 0.5f);
+  return c;
+}
+
+// One pixel's bytes into the image, in its channel order (mode 0 rgb8, 1 bgr8, 2 mono8), and r g b into the
+// cloud's colour (cloud null: none).
+inline void put_pixel(int mode, const PixelBytes& c, uint8_t* image, uint8_t* cloud) {
+  if (mode == 2) {
+    image[0] = c.grey;
+  } else {
+    // fix: channel order follows the image format (upstream swaps R and B for R8G8B8)
+    image[0] = mode == 1 ? c.b : c.r;
+    image[1] = c.g;
+    image[2] = mode == 1 ? c.r : c.b;
+  }
+  if (cloud) {
+    cloud[0] = c.r;
+    cloud[1] = c.g;
+    cloud[2] = c.b;
+  }
+}
+
+// Row v: depth along the optical axis and the cloud (kDepth), and colour: the material lit by the ambient and the
+// directional light (Lambert), else the background; [0, 1] to 0..255 rounded, in the image's channel order (kMode
+// 0 rgb8, 1 bgr8, 2 mono8), r g b into the cloud's colour; kNoisy: the [0, 1] floats into noisy_rgb instead (the
+// noise is drawn after). Beyond the far clip along the optical axis (or no hit: +inf) is no hit. A pixel's colour
+// depends only on (body, normal), the same for every pixel of a flat face: it is worked out again only when these
+// differ from the previous pixel's (the same arithmetic, so the same bytes).
+template <int kMode, bool kDepth, bool kNoisy>
+void shade_row(const Shading& s, int v) {
+  const int w = s.w;
+  const size_t i0 = static_cast<size_t>(v) * w;
+  const RayHit* __restrict const hit_px = s.hits + i0;
+  const float* __restrict const dir = s.dirs + 3 * i0;
+  const float* __restrict const xf = s.col_factor;
+  const Eigen::Vector3f* __restrict const mat = s.mat;
+  uint8_t* __restrict const image = s.image + (kMode == 2 ? 1 : 3) * i0;
+  float* __restrict const depth = kDepth ? s.depth + i0 : nullptr;
+  float* __restrict const points = kDepth ? s.points + 3 * i0 : nullptr;
+  uint8_t* __restrict const cloud_rgb = kDepth ? s.point_rgb + 3 * i0 : nullptr;
+  float* __restrict const noisy_rgb = kNoisy ? s.noisy_rgb + 3 * i0 : nullptr;
+  const float lx = s.light.x(), ly = s.light.y(), lz = s.light.z();
+  const float amb = s.ambient, far_clip = s.far_clip, lo = s.cut_lo, hi = s.cut_hi;
+  const float yf = (v - s.cy) / s.f;
+  int key_hit = -1;  // the previous pixel's: hit (1) or not (0), -1 before the first; with its normal and body
+  uint64_t key0 = 0, key1 = 0;
+  float rf = 0, gf = 0, bf = 0;
+  PixelBytes px{0, 0, 0, 0};
+  for (int u = 0; u < w; ++u) {
+    const RayHit& h = hit_px[u];
+    const float d = h.distance * dir[3 * u];
+    const bool hit = d < far_clip;
+    if (kDepth) {
+      // & rather than &&: no branch
+      const float dv = (hit & (d > lo) & (d < hi)) ? d : kNaN;
+      depth[u] = dv;
+      points[3 * u] = dv * xf[u];
+      points[3 * u + 1] = dv * yf;
+      points[3 * u + 2] = dv;
+    }
+    uint64_t n0, n1;
+    std::memcpy(&n0, reinterpret_cast<const char*>(&h) + 4, 8);
+    std::memcpy(&n1, reinterpret_cast<const char*>(&h) + 12, 8);
+    if ((static_cast<int>(hit) != key_hit) | (hit & (((n0 ^ key0) | (n1 ^ key1)) != 0))) {
+      key_hit = hit;
+      key0 = n0, key1 = n1;
+      rf = s.bg.x(), gf = s.bg.y(), bf = s.bg.z();
+      if (hit) {
+        const float lit = std::min(1.f, amb + 0.8f * std::max(0.f, h.normal.x() * lx + h.normal.y() * ly +
+                                                                        h.normal.z() * lz));
+        const Eigen::Vector3f& m = mat[h.body];
+        rf = std::min(1.f, m.x() * lit);
+        gf = std::min(1.f, m.y() * lit);
+        bf = std::min(1.f, m.z() * lit);
+      }
+      px = pixel_bytes(rf, gf, bf);
+    }
+    if (kNoisy) {
+      noisy_rgb[3 * u] = rf;
+      noisy_rgb[3 * u + 1] = gf;
+      noisy_rgb[3 * u + 2] = bf;
+      continue;
+    }
+    // rgb8's cloud colour is copied from the image row after the loop
+    put_pixel(kMode, px, image + (kMode == 2 ? 1 : 3) * u, kDepth && kMode != 0 ? cloud_rgb + 3 * u : nullptr);
+  }
+  // rgb8: the cloud's colour is the image row's bytes
+  if constexpr (kDepth && kMode == 0 && !kNoisy) std::memcpy(cloud_rgb, image, 3 * static_cast<size_t>(w));
+}
+
+using ShadeRow = void (*)(const Shading&, int);
+
+// The shade_row for an image format (0 rgb8, 1 bgr8, 2 mono8), with or without depth, noisy or not.
+ShadeRow pick_shade_row(int mode, bool depth, bool noisy) {
+  if (noisy) return depth ? shade_row<0, true, true> : shade_row<0, false, true>;
+  static const ShadeRow rows[3][2] = {{shade_row<0, false, false>, shade_row<0, true, false>},
+                                      {shade_row<1, false, false>, shade_row<1, true, false>},
+                                      {shade_row<2, false, false>, shade_row<2, true, false>}};
+  return rows[mode][depth ? 1 : 0];
+}
+
+}  // namespace
 
 void CameraPlugin::post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) {
   const int n = w_ * h_;
   const Eigen::Isometry3d pose = robot.link_pose(link_) * sensor_pose_;
   const RayScene& scene = ctx.world->rays();
   const Environment& env = ctx.world->environment();
-  scene.cast(pose.translation(), pose.linear(), dirs_.data(), n, t_near_.data(), true, t_far_, hits_.data());
   auto o = std::make_unique<CameraOut>(proto_);
   const int channels = o->encoding == "mono8" ? 1 : 3;
   o->image.resize(static_cast<size_t>(n) * channels);
@@ -165,56 +293,42 @@ void CameraPlugin::post_physics(const StepContext& ctx, const RobotHandle& robot
   const float f = static_cast<float>(o->f), cx = static_cast<float>(o->cx), cy = static_cast<float>(o->cy);
   const float far = static_cast<float>(far_);
   CameraOut& im = *o;
-  // per pixel: depth, colour, point; independent pixels, so in parallel (noise, when configured, after)
-#pragma omp parallel for schedule(static)
-  for (int k = 0; k < n; ++k) {
-    const int i = pixel_[k];
-    const RayHit& h = hits_[k];
-    // depth along the optical axis; beyond the far clip is no hit
-    float d = std::isfinite(h.distance) ? h.distance * cos_[k] : kInf;
-    if (d >= far) d = kInf;
-    // colour: the material lit by the ambient and the directional light (Lambert), else the background
-    Eigen::Vector3f rgb = bg;
-    if (std::isfinite(d)) {
-      const Eigen::Vector4d& m = scene.look(h.body).rgba;
-      const float lit = std::min(1.f, ambient + 0.8f * std::max(0.f, h.normal.dot(light)));
-      rgb = (m.head<3>().cast<float>() * lit).cwiseMin(1.f);
-    }
-    rgb_[3 * i] = rgb.x();
-    rgb_[3 * i + 1] = rgb.y();
-    rgb_[3 * i + 2] = rgb.z();
-    if (!im.has_depth) continue;
-    const bool valid = std::isfinite(d) && d > cutoff_ && d < cutoff_max_;
-    const float dv = valid ? d : kNaN;
-    im.depth[i] = dv;
-    const int u = i % w_, v = i / w_;
-    im.points[3 * i] = dv * (u - cx) / f;
-    im.points[3 * i + 1] = dv * (v - cy) / f;
-    im.points[3 * i + 2] = dv;
-  }
+  // each body's material colour
+  thread_local std::vector<Eigen::Vector3f> colour;
+  colour.resize(scene.body_count());
+  for (int b = 0; b < scene.body_count(); ++b) colour[b] = scene.look(b).rgba.head<3>().cast<float>();
+  const std::vector<Eigen::Vector3f>& col = colour;
+  // per pixel: depth, colour [0, 1], point. Points: x = d (u - cx) / f and y = d (v - cy) / f from factors per
+  // column and row.
+  thread_local std::vector<float> colf;
+  colf.resize(w_);
+  for (int u = 0; u < w_; ++u) colf[u] = (u - cx) / f;
+  const float* xf = colf.data();
+  // raw pointers: byte stores may alias anything, so through the vectors every store would reload them
+  uint8_t* const img = im.image.data();
+  uint8_t* const prgb = im.has_depth ? im.point_rgb.data() : nullptr;
+  float* const dep = im.has_depth ? im.depth.data() : nullptr;
+  float* const pts = im.has_depth ? im.points.data() : nullptr;
+  float* const rgbf = rgb_.data();
+  const RayHit* const hits = hits_.data();
+  const float* const dirs = dirs_.data();
+  const Eigen::Vector3f* const colours = col.data();
+  const float cut_lo = static_cast<float>(cutoff_), cut_hi = static_cast<float>(cutoff_max_);
+  // rows r0..r1 (shade_row): without noise straight to bytes, with noise into rgb_
+  const int mode = mono ? 2 : bgr ? 1 : 0;
+  const ShadeRow shade_one = pick_shade_row(mode, im.has_depth, gaussian_);
+  const Shading sh{hits, dirs, xf, colours, light, bg, ambient, far, cut_lo, cut_hi, f, cy, w_, img, dep, pts, prgb,
+                   rgbf};
+  auto shade = [shade_one, &sh](int r0, int r1) {
+    for (int v = r0; v <= r1; ++v) shade_one(sh, v);
+  };
+  scene.render(pose.translation(), pose.linear(), pinhole_, dirs_.data(), t_far_, hits_.data(), shade);
   if (gaussian_) {
     std::normal_distribution<double> noise(noise_mean_, noise_stddev_ > 0 ? noise_stddev_ : 1.0);
     for (int i = 0; i < 3 * n; ++i) rgb_[i] = std::clamp(rgb_[i] + static_cast<float>(noise(rng_)), 0.f, 1.f);
-  }
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
-    // [0, 1] to 0..255, rounded
-    const uint8_t r = static_cast<uint8_t>(rgb_[3 * i] * 255.f + 0.5f);
-    const uint8_t g = static_cast<uint8_t>(rgb_[3 * i + 1] * 255.f + 0.5f);
-    const uint8_t b = static_cast<uint8_t>(rgb_[3 * i + 2] * 255.f + 0.5f);
-    if (mono) {
-      im.image[i] = static_cast<uint8_t>(0.299f * r + 0.587f * g + 0.114f * b + 0.5f);
-    } else {
-      // fix: channel order follows the image format (upstream swaps R and B for R8G8B8)
-      im.image[3 * i] = bgr ? b : r;
-      im.image[3 * i + 1] = g;
-      im.image[3 * i + 2] = bgr ? r : b;
-    }
-    if (im.has_depth) {
-      im.point_rgb[3 * i] = r;
-      im.point_rgb[3 * i + 1] = g;
-      im.point_rgb[3 * i + 2] = b;
-    }
+    for (int i = 0; i < n; ++i)
+      put_pixel(mode, pixel_bytes(rgb_[3 * i], rgb_[3 * i + 1], rgb_[3 * i + 2]), img + channels * i,
+                prgb ? prgb + 3 * i : nullptr);
   }
   out->push_back(std::move(o));
 }
