@@ -185,13 +185,15 @@ def main(argv=None) -> int:
                 latest[key] = msg
         return cb
 
-    # sensors: only while a browser looks; the cloud and the image sampled (see the module's note)
+    # sensors: only while a browser looks; the cloud and the image sampled (see the module's note). TCP_NODELAY:
+    # the subscriber asks for it and the publisher (sim_node) sets it on its socket, so the tail of a big message
+    # is not held back by Nagle's algorithm waiting for an ACK
     sensors = {
-        'scan': Sampled(rospy.get_param('~scan_topic', '/scan'), LaserScan, 0.0),
+        'scan': Sampled(rospy.get_param('~scan_topic', '/scan'), LaserScan, 0.0, tcp_nodelay=True),
         'cloud': Sampled(rospy.get_param('~cloud_topic', '/camera/depth/points'), PointCloud2,
-                         1.0 / float(rospy.get_param('~cloud_rate', 2.0)), buff_size=2 ** 25),
+                         1.0 / float(rospy.get_param('~cloud_rate', 2.0)), buff_size=2 ** 25, tcp_nodelay=True),
         'image': Sampled(rospy.get_param('~image_topic', '/camera/rgb/image_raw'), Image,
-                         1.0 / float(rospy.get_param('~image_rate', 5.0)), buff_size=2 ** 24),
+                         1.0 / float(rospy.get_param('~image_rate', 5.0)), buff_size=2 ** 24, tcp_nodelay=True),
     }
     rospy.Subscriber('/clock', Clock, keep('clock'), queue_size=1)
     from gazebo_msgs.msg import ModelStates

@@ -114,14 +114,15 @@ def main(argv=None) -> int:
     if follow:
         moving = {s['ns'] for s in specs if not s['static']}
         latest = {}
+        # model_states comes at 100 Hz; the markers follow at `rate`: keep the newest message's bytes and unpack
+        # only the one a tick uses (rospy.AnyMsg), not every message
+        newest = [None]
 
-        def on_states(msg):
-            for name, pose in zip(msg.name, msg.pose):
-                if name in moving:
-                    latest[name] = pose
+        def on_states(raw):
+            newest[0] = raw
 
         from gazebo_msgs.msg import ModelStates
-        rospy.Subscriber('/gazebo/model_states', ModelStates, on_states, queue_size=1)
+        rospy.Subscriber('/gazebo/model_states', rospy.AnyMsg, on_states, queue_size=1)
         last_sent = {}
         r = rospy.Rate(rate)
         while not rospy.is_shutdown():
@@ -131,6 +132,12 @@ def main(argv=None) -> int:
                 if rospy.is_shutdown():
                     break
                 continue
+            raw, newest[0] = newest[0], None
+            if raw is not None:
+                msg = ModelStates().deserialize(raw._buff)
+                for name, pose in zip(msg.name, msg.pose):
+                    if name in moving:
+                        latest[name] = pose
             changed = False
             for name, p in list(latest.items()):
                 key = (p.position.x, p.position.y, p.position.z, p.orientation.x, p.orientation.y, p.orientation.z,

@@ -61,6 +61,9 @@ class Adapter {
   virtual bool listened() const { return false; }
   // One output of its plug-in instance, as messages.
   virtual void publish(const car_sim::Output& out, NodeContext& node) = 0;
+  // The same, with the output's ownership: an adapter whose messages are serialised straight from the output's
+  // arrays on the publishing thread (the cameras) keeps it until they are sent.
+  virtual void publish_owned(std::shared_ptr<const car_sim::Output> out, NodeContext& node) { publish(*out, node); }
 };
 
 struct AdapterKind {

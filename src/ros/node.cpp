@@ -62,6 +62,7 @@ bool SimNode::init() {
     return false;
   }
   nh_.setParam("/use_sim_time", true);
+  set_periods();
   log_world(world_file);
   // world models with plug-ins or sensors are robots from the start: their topics (docs/COMPAT-sdf.md 16)
   for (const auto& name : world_->robot_names()) make_io(name);
@@ -95,10 +96,16 @@ void SimNode::run() {
     if (paused_) {
       was_paused = true;
       // keep /clock alive while paused, at 10 Hz of wall time
-      if (clock::now() - last_paused_clock > std::chrono::milliseconds(100)) {
+      auto now = clock::now();
+      if (now - last_paused_clock > std::chrono::milliseconds(100)) {
         publish_clock();
-        last_paused_clock = clock::now();
+        last_paused_clock = now;
       }
+      // the callback queue is looked at every millisecond: callbacks that arrive together (a latched cmd_vel,
+      // then unpause_physics on another connection) run together, in the order roscpp queued them. (Sleeping on
+      // the queue instead ran unpause_physics the moment it came, at times before the command: the car of
+      // rostest drive started late.)
+      publisher_.wake();
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
       continue;
     }
@@ -117,9 +124,13 @@ void SimNode::run() {
       paused_ = true;
       continue;
     }
+    // the steps' messages wake the publishing thread at most once a millisecond of wall time, and before any
+    // sleep (docs/COMPAT-dropins.md "Publishing thread")
+    publisher_.hold();
     publish_outputs();
     // real-time factor: looked at every 100 steps (a clock read), published once a wall second
     if (world_->tick() % 100 == 0) publish_performance();
+    publisher_.release(std::chrono::milliseconds(1));
     if (iters_ > 0 && --iters_ == 0) {
       // gzserver --iters N: N steps, then the server exits
       ROS_INFO("car: --iters reached at %.3f s of sim time: shutting down", stamp(world_->tick()).toSec());
@@ -131,9 +142,18 @@ void SimNode::run() {
       const double sim_elapsed = static_cast<double>(world_->tick() - tick0) * world_->dt();
       const auto due =
           wall0 + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(sim_elapsed / rtf_));
-      if (due > clock::now()) std::this_thread::sleep_until(due);
+      if (due > clock::now()) {
+        publisher_.wake();
+        std::this_thread::sleep_until(due);
+      }
     }
   }
+}
+
+void SimNode::set_periods() {
+  clock_period_ = period_of(clock_rate_);
+  joint_state_period_ = period_of(joint_state_rate_);
+  model_states_period_ = period_of(model_states_rate_);
 }
 
 uint64_t SimNode::period_of(double rate) const {
@@ -165,37 +185,47 @@ void SimNode::publish_clock() {
 void SimNode::publish_outputs() {
   const uint64_t tick = world_->tick();
   const ros::Time now = stamp(tick);
-  if (tick % period_of(clock_rate_) == 0) publish_clock();
-  for (const auto& o : world_->take_outputs()) {
-    const auto it = route_.find({o->robot, o->plugin});
-    if (it != route_.end()) it->second->publish(*o, *this);
+  if (tick % clock_period_ == 0) publish_clock();
+  for (auto& o : world_->take_outputs()) {
+    const auto robot = route_.find(o->robot);
+    if (robot == route_.end()) continue;
+    const auto it = robot->second.find(o->plugin);
+    if (it != robot->second.end()) it->second->publish_owned(std::move(o), *this);
   }
   // lazy plug-ins compute only while someone listens; look every 50 steps
   if (tick % 50 == 0) update_activity();
-  if (tick % period_of(joint_state_rate_) == 0) {
+  if (tick % joint_state_period_ == 0) {
     for (auto& [name, io] : io_) {
       if (io.joint_states.getNumSubscribers() == 0) continue;
       sensor_msgs::JointState js;
       js.header.stamp = now;
-      for (const auto& j : world_->joint_states(name)) {
-        js.name.push_back(j.name);
+      std::vector<car_sim::JointState> joints = world_->joint_states(name);
+      js.name.reserve(joints.size());
+      js.position.reserve(joints.size());
+      js.velocity.reserve(joints.size());
+      for (auto& j : joints) {
+        js.name.push_back(std::move(j.name));
         js.position.push_back(j.position);
         js.velocity.push_back(j.velocity);
       }
       publish(io.joint_states, std::move(js));
     }
   }
-  if (tick % period_of(model_states_rate_) == 0 && model_states_pub_.getNumSubscribers() > 0) {
+  if (tick % model_states_period_ != 0) return;
+  if (model_states_pub_.getNumSubscribers() > 0) {
+    // the names moved in as the world lists them; poses and twists written in place
     gazebo_msgs::ModelStates ms;
-    for (const auto& name : world_->model_names()) {
-      const car_sim::ModelState s = world_->model_state(name);
-      ms.name.push_back(name);
-      ms.pose.push_back(to_pose(s.pose));
-      ms.twist.push_back(to_twist(s.linear, s.angular));
+    ms.name = world_->model_names();
+    ms.pose.resize(ms.name.size());
+    ms.twist.resize(ms.name.size());
+    for (size_t i = 0; i < ms.name.size(); ++i) {
+      const car_sim::ModelState s = world_->model_state(ms.name[i]);
+      ms.pose[i] = to_pose(s.pose);
+      ms.twist[i] = to_twist(s.linear, s.angular);
     }
     publish(model_states_pub_, std::move(ms));
   }
-  if (tick % period_of(model_states_rate_) == 0 && link_states_pub_.getNumSubscribers() > 0) publish_link_states();
+  if (link_states_pub_.getNumSubscribers() > 0) publish_link_states();
 }
 
 void SimNode::update_activity() {
@@ -238,7 +268,7 @@ void SimNode::make_io(const std::string& name) {
     }
     pio.adapter = a->make();
     const std::string offers = pio.adapter->setup(p, info, *this);
-    route_[{name, p.config.name}] = pio.adapter.get();
+    route_[name][p.config.name] = pio.adapter.get();
     if (!p.config.sensor.empty())
       ROS_INFO("car: %s: sensor '%s' (%s, %s) on %s at %g Hz: %s", name.c_str(), p.config.sensor.c_str(),
                p.config.sensor_type.c_str(), p.config.filename.c_str(), p.link.c_str(), p.rate, offers.c_str());

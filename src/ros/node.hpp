@@ -87,6 +87,9 @@ class SimNode : public NodeContext {
   // Adapters for a spawned robot's plug-ins, plus the ground-truth publisher the node attaches.
   void make_io(const std::string& robot);
   uint64_t period_of(double rate) const;
+  // The steps between two /clock, joint_states and model_states messages (from the rates, once the world's step
+  // is known: init()), so a step only compares its tick with them.
+  void set_periods();
 
   // services.cpp
   void advertise_services();
@@ -125,14 +128,15 @@ class SimNode : public NodeContext {
   std::unique_ptr<car_sim::World> world_;
   double rtf_ = 1.0, clock_rate_ = 100.0, joint_state_rate_ = 50.0, model_states_rate_ = 100.0;
   int solver_iterations_ = 10;
+  uint64_t clock_period_ = 10, joint_state_period_ = 20, model_states_period_ = 10;  // [steps]
   bool paused_ = false;
   ros::Publisher clock_pub_, model_states_pub_, link_states_pub_;
   ros::Subscriber set_model_state_sub_, set_link_state_sub_;  // the /gazebo/set_*_state topics
   bool repace_ = false;  // the real-time factor changed: the pacing restarts from now
   std::vector<ros::ServiceServer> services_;
   std::map<std::string, RobotIO> io_;
-  // (robot, plug-in) -> its adapter, for routing outputs
-  std::map<std::pair<std::string, std::string>, Adapter*> route_;
+  // robot -> plug-in -> its adapter, for routing outputs (looked up by the output's own strings: no copy per output)
+  std::map<std::string, std::map<std::string, Adapter*>> route_;
   std::unique_ptr<tf2_ros::TransformBroadcaster> tf_;
   // docs/COMPAT-dropins.md: car-only topics per robot (joint_states, /gazebo/ground_truth/<model>); stop after
   // ~iters steps (gzserver --iters, 0 = never); dynamic_reconfigure server (type-erased) and performance metrics

@@ -162,7 +162,7 @@ bool SimNode::remove(gazebo_msgs::DeleteModel::Request& req, gazebo_msgs::Delete
     res.status_message = std::string("DeleteModel: ") + e.what();
     return true;
   }
-  for (auto it = route_.begin(); it != route_.end();) it = it->first.first == req.model_name ? route_.erase(it) : ++it;
+  route_.erase(req.model_name);
   io_.erase(req.model_name);
   ROS_INFO("car: deleted '%s'", req.model_name.c_str());
   res.success = true;

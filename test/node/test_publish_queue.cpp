@@ -107,3 +107,59 @@ TEST(PublishQueue, ThrowingJobDoesNotStopTheThread) {
   q.flush();
   EXPECT_EQ(ran, 1);
 }
+
+// Jobs posted between hold() and release() wait for release(): the thread is woken once for all of them.
+TEST(PublishQueue, HeldJobsWaitForRelease) {
+  PublishQueue q(1 << 20, 64);
+  std::atomic<int> ran{0};
+  // a busy thread takes whatever is queued: let it go idle first (flush returns once it waits for work)
+  q.post([] {}, 8);
+  q.flush();
+  q.hold();
+  for (int i = 0; i < 3; ++i) q.post([&] { ++ran; }, 8);
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_EQ(ran.load(), 0);
+  q.release();
+  while (q.done() < 4) std::this_thread::yield();
+  EXPECT_EQ(ran.load(), 3);
+}
+
+// release(gap) within `gap` of the last wake-up leaves the jobs held; wake() sends them.
+TEST(PublishQueue, ReleaseWithinTheGapKeepsJobsUntilWake) {
+  PublishQueue q(1 << 20, 64);
+  std::atomic<int> ran{0};
+  q.hold();
+  q.post([&] { ++ran; }, 8);
+  q.release(std::chrono::hours(1));  // the first release wakes (no wake-up yet within the hour)
+  while (q.done() < 1) std::this_thread::yield();
+  q.hold();
+  q.post([&] { ++ran; }, 8);
+  q.release(std::chrono::hours(1));  // an hour has not passed: held
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_EQ(ran.load(), 1);
+  q.wake();
+  while (q.done() < 2) std::this_thread::yield();
+  EXPECT_EQ(ran.load(), 2);
+}
+
+// flush() sends held jobs too (a callback never waits on a job nobody woke the thread for).
+TEST(PublishQueue, FlushSendsHeldJobs) {
+  PublishQueue q(1 << 20, 64);
+  int ran = 0;
+  q.hold();
+  q.post([&] { ++ran; }, 8);
+  q.flush();
+  EXPECT_EQ(ran, 1);
+  q.release();
+}
+
+// Held jobs that fill the queue wake the thread: post() does not wait forever on a thread nobody woke.
+TEST(PublishQueue, HeldJobsFillingTheQueueWakeTheThread) {
+  PublishQueue q(1 << 20, 4);
+  std::atomic<int> ran{0};
+  q.hold();
+  for (int i = 0; i < 100; ++i) q.post([&] { ++ran; }, 8);
+  q.release();
+  q.flush();
+  EXPECT_EQ(ran.load(), 100);
+}

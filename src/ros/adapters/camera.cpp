@@ -13,8 +13,11 @@ class CameraAdapter : public Adapter {
   }
   bool listened() const override { return topics_.listened(); }
   void publish(const car_sim::Output& out, NodeContext& node) override {
-    const auto& o = static_cast<const car_sim::CameraOut&>(out);
-    topics_.publish(o, node.stamp(o.tick), node);
+    publish_owned(std::make_shared<car_sim::CameraOut>(static_cast<const car_sim::CameraOut&>(out)), node);
+  }
+  void publish_owned(std::shared_ptr<const car_sim::Output> out, NodeContext& node) override {
+    auto o = std::static_pointer_cast<const car_sim::CameraOut>(out);
+    topics_.publish(o, node.stamp(o->tick), node);
   }
 
  private:

@@ -17,7 +17,7 @@ sensor_msgs::Image camera_image(const car_sim::CameraOut& o, const std::string& 
   im.encoding = o.encoding;
   im.is_bigendian = 0;
   im.step = o.width * (o.encoding == "mono8" ? 1 : 3);
-  im.data = o.image;
+  im.data.assign(o.image.begin(), o.image.end());
   return im;
 }
 
@@ -60,22 +60,31 @@ sensor_msgs::Image depth_image(const car_sim::CameraOut& o, bool mm, const std::
   return d;
 }
 
+const std::vector<sensor_msgs::PointField>& cloud_fields() {
+  static const std::vector<sensor_msgs::PointField> fields = [] {
+    std::vector<sensor_msgs::PointField> v;
+    const char* names[4] = {"x", "y", "z", "rgb"};
+    const uint32_t offsets[4] = {0, 4, 8, 16};
+    for (int k = 0; k < 4; ++k) {
+      sensor_msgs::PointField f;
+      f.name = names[k];
+      f.offset = offsets[k];
+      f.datatype = sensor_msgs::PointField::FLOAT32;
+      f.count = 1;
+      v.push_back(f);
+    }
+    return v;
+  }();
+  return fields;
+}
+
 sensor_msgs::PointCloud2 point_cloud(const car_sim::CameraOut& o, const std::string& frame, const ros::Time& stamp) {
   sensor_msgs::PointCloud2 pc;
   pc.header.stamp = stamp;
   pc.header.frame_id = frame;
   pc.height = o.height;
   pc.width = o.width;
-  const char* names[4] = {"x", "y", "z", "rgb"};
-  const uint32_t offsets[4] = {0, 4, 8, 16};
-  for (int k = 0; k < 4; ++k) {
-    sensor_msgs::PointField f;
-    f.name = names[k];
-    f.offset = offsets[k];
-    f.datatype = sensor_msgs::PointField::FLOAT32;
-    f.count = 1;
-    pc.fields.push_back(f);
-  }
+  pc.fields = cloud_fields();
   pc.is_bigendian = false;
   pc.point_step = 32;
   pc.row_step = 32 * o.width;
@@ -115,12 +124,19 @@ bool CameraTopics::listened() const {
   return false;
 }
 
-void CameraTopics::publish(const car_sim::CameraOut& o, const ros::Time& stamp, NodeContext& node) {
-  if (image_.getNumSubscribers() > 0) node.publish(image_, camera_image(o, frame_, stamp));
+void CameraTopics::publish(const std::shared_ptr<const car_sim::CameraOut>& o, const ros::Time& stamp,
+                           NodeContext& node) {
+  if (image_.getNumSubscribers() > 0) {
+    ImageView v;
+    v.out = o;
+    v.frame = frame_;
+    v.stamp = stamp;
+    node.publish(image_, std::move(v));
+  }
   const bool info_due =
       info_period_ <= 0.0 || (stamp - last_info_).toSec() >= info_period_ - 1e-9 || stamp < last_info_;
   if (!info_due) return;
-  sensor_msgs::CameraInfo ci = camera_info(o, cfg_, frame_, stamp);
+  sensor_msgs::CameraInfo ci = camera_info(*o, cfg_, frame_, stamp);
   if (extra_info) node.publish(extra_info, ci);
   node.publish(info_, std::move(ci));
   last_info_ = stamp;

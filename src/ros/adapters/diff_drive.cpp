@@ -23,6 +23,8 @@ class DiffDriveAdapter : public Adapter {
     robot_ = robot.name;
     model_ = &robot.model;
     drive_ = dynamic_cast<car_sim::TwistDrive*>(node.world().plugin(robot.name, p.config.name));
+    odom_frame_ = frame(cfg_.odometry_frame);
+    base_frame_ = frame(cfg_.robot_base_frame);
     const std::string cmd = topic_in(cfg_.robot_namespace, cfg_.command_topic);
     const std::string odom = topic_in(cfg_.robot_namespace, cfg_.odometry_topic);
     cmd_vel_ = node.nh().subscribe<geometry_msgs::Twist>(
@@ -40,7 +42,7 @@ class DiffDriveAdapter : public Adapter {
                   "command %s, odometry %s (%s) %s -> %s at %g Hz, wheels %s/%s, separation %g m, diameter %g m, "
                   "torque %g N m, acceleration %g m/s^2%s%s%s",
                   cmd.c_str(), odom.c_str(), cfg_.encoder_odometry ? "encoder" : "world",
-                  frame(cfg_.odometry_frame).c_str(), frame(cfg_.robot_base_frame).c_str(), cfg_.update_rate,
+                  odom_frame_.c_str(), base_frame_.c_str(), cfg_.update_rate,
                   cfg_.left_joint.c_str(), cfg_.right_joint.c_str(), cfg_.wheel_separation, cfg_.wheel_diameter,
                   cfg_.wheel_torque, cfg_.wheel_acceleration, cfg_.publish_odom_tf ? ", odom TF" : "",
                   cfg_.publish_wheel_tf ? ", wheel TF" : "", cfg_.publish_wheel_joint_state ? ", wheel joint states" : "");
@@ -52,23 +54,27 @@ class DiffDriveAdapter : public Adapter {
     const ros::Time stamp = node.stamp(o.tick);
     nav_msgs::Odometry msg;
     msg.header.stamp = stamp;
-    msg.header.frame_id = frame(cfg_.odometry_frame);
-    msg.child_frame_id = frame(cfg_.robot_base_frame);
+    msg.header.frame_id = odom_frame_;
+    msg.child_frame_id = base_frame_;
     msg.pose.pose = to_pose(o.pose);
     const double cov[6] = {1e-5, 1e-5, 1e12, 1e12, 1e12, 1e-3};
     for (int i = 0; i < 6; ++i) msg.pose.covariance[i * 7] = cov[i];
     msg.twist.twist = to_twist(o.linear, o.angular);
-    node.publish(odom_, msg);
+    // the transform is made before the odometry is moved to the publishing thread; both leave in that order
+    geometry_msgs::TransformStamped t;
     if (cfg_.publish_odom_tf) {
-      geometry_msgs::TransformStamped t;
       t.header = msg.header;
       t.child_frame_id = msg.child_frame_id;
       t.transform = to_transform(o.pose);
-      node.send_tf(std::move(t));
     }
+    node.publish(odom_, std::move(msg));
+    if (cfg_.publish_odom_tf) node.send_tf(std::move(t));
     if (cfg_.publish_wheel_joint_state) {
       sensor_msgs::JointState js;
       js.header.stamp = stamp;
+      js.name.reserve(o.joints.size());
+      js.position.reserve(o.joints.size());
+      js.velocity.reserve(o.joints.size());
       for (const auto& j : o.joints) {
         js.name.push_back(j.name);
         js.position.push_back(j.position);
@@ -125,6 +131,7 @@ class DiffDriveAdapter : public Adapter {
 
   car_sim::DiffDriveConfig cfg_;
   std::string robot_;
+  std::string odom_frame_, base_frame_;  // the odometry's frame_id and child_frame_id, as published
   const car_sim::RobotModel* model_ = nullptr;
   car_sim::TwistDrive* drive_ = nullptr;
   ros::Subscriber cmd_vel_;

@@ -39,11 +39,16 @@ class MultiCameraAdapter : public Adapter {
   }
 
   void publish(const car_sim::Output& out, NodeContext& node) override {
-    const auto& o = static_cast<const car_sim::MultiCameraOut&>(out);
+    publish_owned(std::make_shared<car_sim::MultiCameraOut>(static_cast<const car_sim::MultiCameraOut&>(out)), node);
+  }
+  void publish_owned(std::shared_ptr<const car_sim::Output> out, NodeContext& node) override {
+    const auto& o = static_cast<const car_sim::MultiCameraOut&>(*out);
     const ros::Time stamp = node.stamp(o.tick);
     for (size_t i = 0; i < o.frames.size(); ++i)
       for (size_t k = 0; k < sides_.size(); ++k)
-        if (sides_[k] == o.sides[i]) topics_[k].publish(o.frames[i], stamp, node);
+        if (sides_[k] == o.sides[i])
+          // a frame of the pair, owned with the whole output
+          topics_[k].publish(std::shared_ptr<const car_sim::CameraOut>(out, &o.frames[i]), stamp, node);
   }
 
  private:

@@ -26,11 +26,28 @@ class KinectAdapter : public Adapter {
   }
 
   void publish(const car_sim::Output& out, NodeContext& node) override {
-    const auto& o = static_cast<const car_sim::CameraOut&>(out);
-    const ros::Time stamp = node.stamp(o.tick);
+    publish_owned(std::make_shared<car_sim::CameraOut>(static_cast<const car_sim::CameraOut&>(out)), node);
+  }
+  void publish_owned(std::shared_ptr<const car_sim::Output> out, NodeContext& node) override {
+    auto o = std::static_pointer_cast<const car_sim::CameraOut>(out);
+    const ros::Time stamp = node.stamp(o->tick);
     topics_.publish(o, stamp, node);
-    if (depth_.getNumSubscribers() > 0) node.publish(depth_, depth_image(o, millimetres_, topics_.frame_id(), stamp));
-    if (points_.getNumSubscribers() > 0) node.publish(points_, point_cloud(o, topics_.frame_id(), stamp));
+    // depth image and cloud: serialised by roscpp straight from the frame's arrays (camera_msgs.hpp)
+    if (depth_.getNumSubscribers() > 0) {
+      DepthView v;
+      v.out = o;
+      v.frame = topics_.frame_id();
+      v.stamp = stamp;
+      v.millimetres = millimetres_;
+      node.publish(depth_, std::move(v));
+    }
+    if (points_.getNumSubscribers() > 0) {
+      CloudView v;
+      v.out = o;
+      v.frame = topics_.frame_id();
+      v.stamp = stamp;
+      node.publish(points_, std::move(v));
+    }
   }
 
  private:
