@@ -15,6 +15,9 @@ class Recorder:
     def __init__(self, topic, msg_type=Odometry):
         self.msgs = []
         self.lock = threading.Lock()
+        # /rosout merges many nodes' lines whose stamps interleave (each node's clock lags differently): a stamp
+        # going back there is no reset, so a log recorder keeps every message
+        self.keep_all = topic == '/rosout'
         self.sub = rospy.Subscriber(topic, msg_type, self._cb, queue_size=None, tcp_nodelay=True)
 
     def _cb(self, msg):
@@ -23,7 +26,8 @@ class Recorder:
             # run's messages. Messages published just before a pause can arrive after a test cleared the records;
             # kept, a stale message stamped late in the old run would satisfy until() at once.
             header = getattr(msg, 'header', None)
-            if header is not None and self.msgs and header.stamp < self.msgs[-1].header.stamp:
+            if (not self.keep_all and header is not None and self.msgs
+                    and header.stamp < self.msgs[-1].header.stamp):
                 self.msgs.clear()
             self.msgs.append(msg)
 
@@ -46,6 +50,18 @@ class Recorder:
                     return list(self.msgs)
             time.sleep(0.01)
         raise AssertionError('no message at sim time %.3f within %.0f s' % (t, timeout))
+
+
+def receive_all(sub):
+    """Makes the rospy Subscriber sub receive every message of its topic, and returns it. rospy gives a node's
+    subscribers of one topic one shared connection, bounded by the queue_size it was made with, and a later
+    queue_size=None does not lift that bound. Under use_sim_time rospy's own /clock subscriber
+    (rospy.impl.simtime) made /clock's connection with queue_size=1: messages read from the socket together
+    (whenever this process is slow to read, a busy machine) are cut to the newest."""
+    sub.impl.set_queue_size(None)
+    for connection in list(sub.impl.connections):
+        connection.protocol.queue_size = None
+    return sub
 
 
 def wait_publisher(sub, node='/gazebo', timeout=300.0):

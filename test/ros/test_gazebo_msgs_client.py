@@ -20,6 +20,8 @@ from gazebo_msgs.srv import (DeleteModel, GetJointProperties, GetModelState, Get
 from geometry_msgs.msg import Pose, Point, Quaternion
 from std_srvs.srv import Empty
 
+import simtest
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 BOX_URDF = """<robot name="box">
@@ -127,7 +129,8 @@ class GazeboMsgsClientTest(unittest.TestCase):
     def test_pub_clock_frequency_sets_the_clock_step(self):
         # 50 Hz in sim time: successive /clock stamps 0.02 s apart
         stamps = []
-        sub = rospy.Subscriber('/clock', Clock, lambda m: stamps.append(m.clock.to_sec()))
+        # every message (rospy's own sim-time /clock subscription would bound it at 1: simtest.receive_all)
+        sub = simtest.receive_all(rospy.Subscriber('/clock', Clock, lambda m: stamps.append(m.clock.to_sec())))
         time.sleep(0.5)
         self.gz.step_until(0.5)
         paused_at = self.gz.world().sim_time
