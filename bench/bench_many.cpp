@@ -1,7 +1,9 @@
 // Many robots in one process: N seed cars, each with its lidar (360 rays, 5.5 Hz) computing and its diff drive
 // commanded, on a grid in the empty world; prints the real-time factor for each N and the largest N that
 // holds >= 1x real time (issue 13's "many robots" row).
-// usage: bench_many URDF [SIM_SECONDS] [MAX_N]
+// usage: bench_many URDF [SIM_SECONDS] [MAX_N] [only]
+// With `only`, it times MAX_N cars once (for profilers and alternated old/new runs) and also prints the wall time
+// per car and step.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -40,12 +42,18 @@ static double rtf(const car_sim::RobotModel& car, int n, double seconds) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: bench_many URDF [SIM_SECONDS] [MAX_N]\n");
+    std::fprintf(stderr, "usage: bench_many URDF [SIM_SECONDS] [MAX_N] [only]\n");
     return 2;
   }
   const double seconds = argc > 2 ? std::atof(argv[2]) : 5.0;
   const int max_n = argc > 3 ? std::atoi(argv[3]) : 512;
   const car_sim::RobotModel car = car_sim::load_urdf_file(argv[1]);
+  if (argc > 4 && std::string(argv[4]) == "only") {
+    const double r = rtf(car, max_n, seconds);
+    // [us] of wall time per car and 1 ms step
+    std::printf("cars %4d: %6.2fx real time, %.2f us per car and step\n", max_n, r, 1e3 / (r * max_n));
+    return 0;
+  }
   // doubling until below real time, then bisection between the last two
   int lo = 0, hi = 0;
   for (int n = 8; n <= max_n; n *= 2) {

@@ -181,9 +181,10 @@ def validate():
     return rest_z, r
 
 
-def steps_per_second(steps, settle=3000, sleep=False):
-    """Steps/s of MuJoCo's own loop (mj_step with nstep: no Python per step) driving the seed command in box_house;
-    sleep: MuJoCo's island sleeping on (resting bodies skipped, as Bullet's deactivation does in car)."""
+def rates(steps, settle=3000, sleep=False):
+    """(steps per wall second, steps per CPU second of this thread) of MuJoCo's own loop (mj_step with nstep: no
+    Python per step) driving the seed command in box_house, on a model built afresh; sleep: MuJoCo's island
+    sleeping on (resting bodies skipped, as Bullet's deactivation does in car)."""
     import mujoco
     model, left, right, sep, radius, _ = build()
     if sleep:
@@ -191,9 +192,15 @@ def steps_per_second(steps, settle=3000, sleep=False):
     data = mujoco.MjData(model)
     command(model, data, left, right, sep, radius, 1.0, 1.0)
     mujoco.mj_step(model, data, nstep=settle)
-    t = time.perf_counter()
+    t, c = time.perf_counter(), time.thread_time()
     mujoco.mj_step(model, data, nstep=steps)
-    return steps / (time.perf_counter() - t)
+    c, t = time.thread_time() - c, time.perf_counter() - t
+    return steps / t, steps / max(c, 1e-9)
+
+
+def steps_per_second(steps, settle=3000, sleep=False):
+    """Steps per wall second of rates()."""
+    return rates(steps, settle, sleep)[0]
 
 
 def version():

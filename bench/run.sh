@@ -1,5 +1,8 @@
 #!/usr/bin/env bash
 # Runs car's benchmarks beside their peer (PyBullet and MuJoCo from PyPI, installed into .venv on first use).
+# usage: bench/run.sh [--repeat N] [--many-repeat M] [--no-sensors] [--json FILE]   (bench_physics.py --help)
+# Each figure is the best of N interleaved rounds (default 5), its median beside it; about 5 min on a quiet
+# machine (estimated; the run prints its own time).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../tools/env.sh"
 "$ROOT/.venv/bin/python" -c "import pybullet, mujoco" 2>/dev/null || \
