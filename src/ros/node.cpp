@@ -81,7 +81,6 @@ bool SimNode::init() {
 
 void SimNode::run() {
   using clock = std::chrono::steady_clock;
-  auto wall0 = clock::now();
   uint64_t tick0 = world_->tick();
   bool was_paused = true;
   auto last_paused_clock = clock::now();
@@ -111,8 +110,8 @@ void SimNode::run() {
     }
     if (was_paused || tick0 > world_->tick() || repace_) {
       // (re)start pacing after a pause, a reset or a new real-time factor
-      wall0 = clock::now();
       tick0 = world_->tick();
+      pacer_.restart(clock::now(), tick0);
       was_paused = false;
       repace_ = false;
     }
@@ -139,10 +138,10 @@ void SimNode::run() {
       break;
     }
     if (rtf_ > 0.0) {
-      const double sim_elapsed = static_cast<double>(world_->tick() - tick0) * world_->dt();
-      const auto due =
-          wall0 + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(sim_elapsed / rtf_));
-      if (due > clock::now()) {
+      // a stall of more than 10 ms of wall time is not made up in a burst (docs/COMPAT-dropins.md "Pacing")
+      const auto now = clock::now();
+      const auto due = pacer_.due(world_->tick(), world_->dt(), rtf_, now);
+      if (due > now) {
         publisher_.wake();
         std::this_thread::sleep_until(due);
       }

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "adapter.hpp"
+#include "pacer.hpp"
 #include "publish_queue.hpp"
 #include "car_sim/world.hpp"
 
@@ -132,7 +133,9 @@ class SimNode : public NodeContext {
   bool paused_ = false;
   ros::Publisher clock_pub_, model_states_pub_, link_states_pub_;
   ros::Subscriber set_model_state_sub_, set_link_state_sub_;  // the /gazebo/set_*_state topics
-  bool repace_ = false;  // the real-time factor changed: the pacing restarts from now
+  bool repace_ = false;  // the real-time factor changed or the time went back to 0: the pacing restarts from now
+  // rtf > 0: the steps' wall-time schedule; a lag over 10 ms is dropped, not made up
+  Pacer pacer_{std::chrono::milliseconds(10)};
   std::vector<ros::ServiceServer> services_;
   std::map<std::string, RobotIO> io_;
   // robot -> plug-in -> its adapter, for routing outputs (looked up by the output's own strings: no copy per output)
