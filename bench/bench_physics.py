@@ -223,13 +223,16 @@ def core_sensors(threads):
 
 
 def parse_sensors(out):
-    """{'rays': rays/s, 'fps': frames/s, 'full': x real time} from bench_sensors' lines."""
+    """{'rays': rays/s, 'fps': frames/s, 'depth_alone_fps': frames/s of the depth image alone, 'full': x real
+    time} from bench_sensors' lines."""
     vals = {}
     for line in out.splitlines():
         if line.startswith('lidar:'):
             vals['rays'] = float(line.split('->')[1].split()[0]) * 1e6
         elif line.startswith('depth:'):
             vals['fps'] = float(line.split('->')[1].split()[0])
+        elif line.startswith('depth image alone:'):
+            vals['depth_alone_fps'] = float(line.split('->')[1].split()[0])
         elif line.startswith('full stack'):
             vals['full'] = float(line.split(':')[1].split('x')[0])
     return vals
@@ -376,6 +379,8 @@ def measurements(a):
             c = core_sensors(threads)
             n = '%dcore' % threads
             out = {'lidar.car_%s_rays_per_s' % n: c['rays'], 'depth.car_%s_fps' % n: c['fps']}
+            if 'depth_alone_fps' in c:
+                out['depth.car_%s_depth_image_alone_fps' % n] = c['depth_alone_fps']
             if threads == 2:
                 out['full_stack.core_x_real_time'] = c['full']
             return out
@@ -527,6 +532,9 @@ def main():
         line('lidar rays/s, all cores: PyBullet', 'lidar.pybullet_all_rays_per_s', 1e6, ' M', None)
         line('depth+colour frames/s 640x480, 1 core: car', 'depth.car_1core_fps', 1, '  ', pbc)
         line('depth+colour frames/s 640x480, 2 cores: car', 'depth.car_2core_fps', 1, '  ', pbc)
+        if 'depth.car_2core_depth_image_alone_fps' in f:
+            line('depth image alone frames/s 640x480, 2 cores: car', 'depth.car_2core_depth_image_alone_fps', 1, '  ',
+                 pbc)
         line('getCameraImage 640x480 (TinyRenderer): PyBullet', 'depth.pybullet_tinyrenderer_fps', 1, '  ', None)
         line('full stack in the core (1 kHz, lidar 5.5 Hz, depth 10 Hz) [x]', 'full_stack.core_x_real_time', 1, 'x',
              None)

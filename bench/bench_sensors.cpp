@@ -1,4 +1,5 @@
-// Sensor throughput of the core, seed car in box_house: lidar rays/s and depth frames/s (640 x 480).
+// Sensor throughput of the core, seed car in box_house: lidar rays/s and depth frames/s (640 x 480), with every
+// part of the Kinect's frames (colour, depth, cloud) and with its depth image alone (Plugin::set_parts).
 // usage: bench_sensors URDF WORLD [SECONDS]   (OMP_NUM_THREADS sets the cores used)
 #include <omp.h>
 
@@ -26,11 +27,14 @@ static std::string replace(std::string s, const std::string& from, const std::st
 }
 
 static double run(const std::string& urdf_xml, const std::string& world, double seconds,
-                  std::initializer_list<const char*> active, car_sim::OutputQueue* out) {
+                  std::initializer_list<const char*> active, car_sim::OutputQueue* out, uint32_t parts = ~0u) {
   car_sim::World w(car_sim::load_world_file(world));
   w.spawn(car_sim::load_urdf_string(urdf_xml, "car"), "mycar", Eigen::Isometry3d::Identity());
   w.set_cmd_vel("mycar", 1.0, 1.0);
-  for (const char* p : active) w.set_sensor_active("mycar", p, true);
+  for (const char* p : active) {
+    w.set_sensor_active("mycar", p, true);
+    w.plugin("mycar", p)->set_parts(parts);
+  }
   w.step(3000);
   w.take_outputs();
   const auto t0 = clk::now();
@@ -79,6 +83,9 @@ int main(int argc, char** argv) {
   const double depth = run(seed, argv[2], T, {"kinect_camera_controller"}, &o);
   const size_t frames = of(static_cast<car_sim::CameraOut*>(nullptr)).size();
   physics = std::min(physics, run(seed, argv[2], T, {}, &o));
+  const double depth_alone = run(seed, argv[2], T, {"kinect_camera_controller"}, &o, car_sim::kCameraDepth);
+  const size_t frames_alone = of(static_cast<car_sim::CameraOut*>(nullptr)).size();
+  physics = std::min(physics, run(seed, argv[2], T, {}, &o));
   const double full = run(full10, argv[2], T, {"gazebo_rplidar", "kinect_camera_controller"}, &o);
   std::printf("threads %d\n", omp_get_max_threads());
   std::printf("physics alone: %.1fx real time\n", T / physics);
@@ -86,6 +93,8 @@ int main(int argc, char** argv) {
               rays / std::max(1e-9, lidar - physics) / 1e6);
   std::printf("depth: %zu frames 640x480 in %.3f s over physics -> %.1f frames/s = %.1f M rays/s\n", frames,
               depth - physics, frames / (depth - physics), frames * 307200.0 / (depth - physics) / 1e6);
+  std::printf("depth image alone: %zu frames 640x480 in %.3f s over physics -> %.1f frames/s\n", frames_alone,
+              depth_alone - physics, frames_alone / (depth_alone - physics));
   std::printf("full stack (physics 1 kHz, lidar 5.5 Hz, depth 10 Hz): %.1fx real time\n", T / full);
   return 0;
 }

@@ -186,6 +186,10 @@ class Plugin {
   virtual void reset() {}
   // A lazy plug-in was switched on or off.
   virtual void set_active(bool active) {}
+  // Which parts of its outputs anyone takes, a bit per part as its kind defines them (all bits: everything, the
+  // default). A plug-in may leave the other parts out of the outputs it makes from then on; a kind without parts
+  // ignores this.
+  virtual void set_parts(uint32_t parts) {}
 };
 
 // What the resolver hands a kind's finish(): the plug-in being resolved, its model and where to report.

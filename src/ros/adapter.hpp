@@ -59,6 +59,8 @@ class Adapter {
   virtual std::string setup(const car_sim::PluginInfo& plugin, const car_sim::RobotInfo& robot, NodeContext& node) = 0;
   // Someone listens to one of its topics: a lazy plug-in computes only then.
   virtual bool listened() const { return false; }
+  // The parts of its plug-in's outputs its subscribers take (Plugin::set_parts; all bits: everything).
+  virtual uint32_t parts() const { return ~0u; }
   // One output of its plug-in instance, as messages.
   virtual void publish(const car_sim::Output& out, NodeContext& node) = 0;
   // The same, with the output's ownership: an adapter whose messages are serialised straight from the output's

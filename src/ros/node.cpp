@@ -232,9 +232,16 @@ void SimNode::update_activity() {
     for (auto& p : io.plugins) {
       if (!p.info.lazy || !p.adapter) continue;
       const bool want = p.adapter->listened();
-      if (want == p.active) continue;
-      world_->set_plugin_active(name, p.info.config.name, want);
-      p.active = want;
+      if (want != p.active) {
+        world_->set_plugin_active(name, p.info.config.name, want);
+        p.active = want;
+      }
+      // only the parts someone takes are made (a depth camera's depth image without its colour and cloud)
+      const uint32_t parts = p.adapter->parts();
+      if (parts != p.parts) {
+        world_->plugin(name, p.info.config.name)->set_parts(parts);
+        p.parts = parts;
+      }
     }
 }
 

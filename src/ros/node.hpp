@@ -75,6 +75,7 @@ class SimNode : public NodeContext {
     car_sim::PluginInfo info;
     std::unique_ptr<Adapter> adapter;
     bool active = false;
+    uint32_t parts = ~0u;  // the output parts last handed to the plug-in (Plugin::set_parts)
   };
   struct RobotIO {
     ros::Publisher joint_states;  // every non-fixed joint, in the spawn namespace

@@ -63,6 +63,12 @@ def test_parse_sensors_reads_rays_frames_and_real_time():
     assert bench_physics.parse_sensors(out) == {'rays': pytest.approx(3.24e6), 'fps': 15.0, 'full': 1.5}
 
 
+def test_parse_sensors_reads_the_depth_image_alone():
+    out = ('depth: 100 frames 640x480 in 6.652 s over physics -> 15.0 frames/s = 4.6 M rays/s\n'
+           'depth image alone: 100 frames 640x480 in 3.326 s over physics -> 30.1 frames/s\n')
+    assert bench_physics.parse_sensors(out) == {'fps': 15.0, 'depth_alone_fps': 30.1}
+
+
 def _physics_record(**extra):
     f = {'physics.car_core_cpp': 40000.0, 'physics.mujoco': 20000.0, 'physics.mujoco_sleep': 32000.0,
          'physics.pybullet_10it': 10000.0, 'physics.car_ros_node': 30000.0}

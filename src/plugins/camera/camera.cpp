@@ -259,6 +259,20 @@ void shade_row(const Shading& s, int v) {
   if constexpr (kDepth && kMode == 0 && !kNoisy) std::memcpy(cloud_rgb, image, 3 * static_cast<size_t>(w));
 }
 
+// Row v's depth alone (a depth camera whose image and cloud nobody takes): the same values as shade_row's.
+void depth_row(const Shading& s, int v) {
+  const int w = s.w;
+  const size_t i0 = static_cast<size_t>(v) * w;
+  const RayHit* __restrict const hit_px = s.hits + i0;
+  const float* __restrict const dir = s.dirs + 3 * i0;
+  float* __restrict const depth = s.depth + i0;
+  const float far_clip = s.far_clip, lo = s.cut_lo, hi = s.cut_hi;
+  for (int u = 0; u < w; ++u) {
+    const float d = hit_px[u].distance * dir[3 * u];
+    depth[u] = ((d < far_clip) & (d > lo) & (d < hi)) ? d : kNaN;
+  }
+}
+
 using ShadeRow = void (*)(const Shading&, int);
 
 // The shade_row for an image format (0 rgb8, 1 bgr8, 2 mono8), with or without depth, noisy or not.
@@ -279,9 +293,14 @@ void CameraPlugin::post_physics(const StepContext& ctx, const RobotHandle& robot
   const Environment& env = ctx.world->environment();
   auto o = std::make_unique<CameraOut>(proto_);
   const int channels = o->encoding == "mono8" ? 1 : 3;
-  o->image.resize(static_cast<size_t>(n) * channels);
-  if (o->has_depth) {
-    o->depth.resize(n);
+  // the parts someone takes (none known: all): a depth camera makes depth for its depth image or cloud, colour for
+  // its image or cloud; a plain camera always its image
+  const uint32_t parts = (parts_ & (kCameraImage | kCameraDepth | kCameraCloud)) ? parts_ : ~0u;
+  const bool make_depth = o->has_depth && (parts & (kCameraDepth | kCameraCloud));
+  const bool make_colour = !make_depth || (parts & (kCameraImage | kCameraCloud));
+  if (make_colour) o->image.resize(static_cast<size_t>(n) * channels);
+  if (make_depth) o->depth.resize(n);
+  if (make_depth && make_colour) {
     o->points.resize(3 * static_cast<size_t>(n));
     o->point_rgb.resize(3 * static_cast<size_t>(n));
   }
@@ -305,10 +324,10 @@ void CameraPlugin::post_physics(const StepContext& ctx, const RobotHandle& robot
   for (int u = 0; u < w_; ++u) colf[u] = (u - cx) / f;
   const float* xf = colf.data();
   // raw pointers: byte stores may alias anything, so through the vectors every store would reload them
-  uint8_t* const img = im.image.data();
-  uint8_t* const prgb = im.has_depth ? im.point_rgb.data() : nullptr;
-  float* const dep = im.has_depth ? im.depth.data() : nullptr;
-  float* const pts = im.has_depth ? im.points.data() : nullptr;
+  uint8_t* const img = make_colour ? im.image.data() : nullptr;
+  uint8_t* const prgb = make_depth && make_colour ? im.point_rgb.data() : nullptr;
+  float* const dep = make_depth ? im.depth.data() : nullptr;
+  float* const pts = make_depth && make_colour ? im.points.data() : nullptr;
   float* const rgbf = rgb_.data();
   const RayHit* const hits = hits_.data();
   const float* const dirs = dirs_.data();
@@ -316,14 +335,15 @@ void CameraPlugin::post_physics(const StepContext& ctx, const RobotHandle& robot
   const float cut_lo = static_cast<float>(cutoff_), cut_hi = static_cast<float>(cutoff_max_);
   // rows r0..r1 (shade_row): without noise straight to bytes, with noise into rgb_
   const int mode = mono ? 2 : bgr ? 1 : 0;
-  const ShadeRow shade_one = pick_shade_row(mode, im.has_depth, gaussian_);
+  // depth and colour in one pass (with the cloud), or either alone
+  const ShadeRow shade_one = make_colour ? pick_shade_row(mode, make_depth, gaussian_) : depth_row;
   const Shading sh{hits, dirs, xf, colours, light, bg, ambient, far, cut_lo, cut_hi, f, cy, w_, img, dep, pts, prgb,
                    rgbf};
   auto shade = [shade_one, &sh](int r0, int r1) {
     for (int v = r0; v <= r1; ++v) shade_one(sh, v);
   };
   scene.render(pose.translation(), pose.linear(), pinhole_, dirs_.data(), t_far_, hits_.data(), shade);
-  if (gaussian_) {
+  if (gaussian_ && make_colour) {
     std::normal_distribution<double> noise(noise_mean_, noise_stddev_ > 0 ? noise_stddev_ : 1.0);
     for (int i = 0; i < 3 * n; ++i) rgb_[i] = std::clamp(rgb_[i] + static_cast<float>(noise(rng_)), 0.f, 1.f);
     for (int i = 0; i < n; ++i)
@@ -341,11 +361,12 @@ void CameraOut::visit(FieldVisitor& v) const {
   v.number("cy", cy);
   v.text("encoding", encoding);
   const size_t H = static_cast<size_t>(height), W = static_cast<size_t>(width);
-  v.array("image", image.data(), {H, W, encoding == "mono8" ? size_t(1) : size_t(3)});
+  // the parts this frame has (all of them unless set_parts left some out)
+  if (!image.empty()) v.array("image", image.data(), {H, W, encoding == "mono8" ? size_t(1) : size_t(3)});
   if (!has_depth) return;
-  v.array("depth", depth.data(), {H, W});
-  v.array("points", points.data(), {H, W, 3});
-  v.array("point_rgb", point_rgb.data(), {H, W, 3});
+  if (!depth.empty()) v.array("depth", depth.data(), {H, W});
+  if (!points.empty()) v.array("points", points.data(), {H, W, 3});
+  if (!point_rgb.empty()) v.array("point_rgb", point_rgb.data(), {H, W, 3});
 }
 
 const PluginKind& camera_kind() {

@@ -38,13 +38,18 @@ struct UninitAllocator : std::allocator<T> {
 template <class T>
 using FrameBuffer = std::vector<T, UninitAllocator<T>>;
 
+// A camera's output parts (Plugin::set_parts): the colour image, the depth image, the cloud (points with colour).
+constexpr uint32_t kCameraImage = 1u, kCameraDepth = 2u, kCameraCloud = 4u;
+
+// One frame. A part nobody takes may be left out (its arrays empty): the image without kCameraImage or kCameraCloud,
+// depth without kCameraDepth or kCameraCloud, points and point_rgb without kCameraCloud.
 struct CameraOut : Output {
   std::string sensor;
   int width = 0, height = 0;
   double f = 0, cx = 0, cy = 0;    // [px] one focal length; cx = (W-1)/2, cy = (H-1)/2
   std::string encoding;            // "rgb8", "bgr8", "mono8"
   FrameBuffer<uint8_t> image;      // row-major, top row first
-  bool has_depth = false;
+  bool has_depth = false;          // a depth camera (its depth, points and point_rgb are made when taken)
   FrameBuffer<float> depth;        // [m] along the optical axis; NaN outside (cutoff, cutoff_max) and for no hit
   FrameBuffer<float> points;       // x y z per pixel [m], optical frame (z forward, x right, y down); NaN with depth
   FrameBuffer<uint8_t> point_rgb;  // r g b per pixel
@@ -66,6 +71,7 @@ class CameraPlugin : public Plugin {
   CameraPlugin(const PluginConfig& c, const std::string& robot, uint64_t seed, bool depth);
   double update_rate() const override { return rate_; }
   void reset() override { rng_ = rng0_; }
+  void set_parts(uint32_t parts) override { parts_ = parts; }
   void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) override;
 
  private:
@@ -84,6 +90,7 @@ class CameraPlugin : public Plugin {
   std::vector<float> rgb_;  // [0, 1] per channel, before rounding (with noise only)
   float t_far_ = 0;
   std::vector<RayHit> hits_;
+  uint32_t parts_ = ~0u;  // kCamera* bits someone takes
 };
 
 const PluginKind& camera_kind();

@@ -126,7 +126,8 @@ bool CameraTopics::listened() const {
 
 void CameraTopics::publish(const std::shared_ptr<const car_sim::CameraOut>& o, const ros::Time& stamp,
                            NodeContext& node) {
-  if (image_.getNumSubscribers() > 0) {
+  // the frame has no image when nobody took one as it was made (a depth camera's parts)
+  if (image_.getNumSubscribers() > 0 && !o->image.empty()) {
     ImageView v;
     v.out = o;
     v.frame = frame_;

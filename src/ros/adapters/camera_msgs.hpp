@@ -52,6 +52,8 @@ class CameraTopics {
   // Returns the topics, for the log line.
   std::string advertise(ros::NodeHandle& nh, const car_sim::PluginConfig& c, const std::string& model_name);
   bool listened() const;
+  // The image topic has subscribers.
+  bool image_listened() const { return image_ && image_.getNumSubscribers() > 0; }
   // Image (when subscribed) and camera_info (when due) of a frame.
   void publish(const std::shared_ptr<const car_sim::CameraOut>& o, const ros::Time& stamp, NodeContext& node);
   const std::string& base() const { return base_; }

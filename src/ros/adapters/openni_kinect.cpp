@@ -24,6 +24,14 @@ class KinectAdapter : public Adapter {
   bool listened() const override {
     return topics_.listened() || depth_.getNumSubscribers() > 0 || points_.getNumSubscribers() > 0;
   }
+  // the frame's parts by topic; camera_info alone needs no pixels: depth, the cheapest part
+  uint32_t parts() const override {
+    uint32_t p = 0;
+    if (topics_.image_listened()) p |= car_sim::kCameraImage;
+    if (depth_.getNumSubscribers() > 0) p |= car_sim::kCameraDepth;
+    if (points_.getNumSubscribers() > 0) p |= car_sim::kCameraCloud;
+    return p ? p : car_sim::kCameraDepth;
+  }
 
   void publish(const car_sim::Output& out, NodeContext& node) override {
     publish_owned(std::make_shared<car_sim::CameraOut>(static_cast<const car_sim::CameraOut&>(out)), node);
@@ -33,7 +41,8 @@ class KinectAdapter : public Adapter {
     const ros::Time stamp = node.stamp(o->tick);
     topics_.publish(o, stamp, node);
     // depth image and cloud: serialised by roscpp straight from the frame's arrays (camera_msgs.hpp)
-    if (depth_.getNumSubscribers() > 0) {
+    // a part nobody took as the frame was made is not in it (a subscriber that came since gets the next frame)
+    if (depth_.getNumSubscribers() > 0 && !o->depth.empty()) {
       DepthView v;
       v.out = o;
       v.frame = topics_.frame_id();
@@ -41,7 +50,7 @@ class KinectAdapter : public Adapter {
       v.millimetres = millimetres_;
       node.publish(depth_, std::move(v));
     }
-    if (points_.getNumSubscribers() > 0) {
+    if (points_.getNumSubscribers() > 0 && !o->points.empty()) {
       CloudView v;
       v.out = o;
       v.frame = topics_.frame_id();
