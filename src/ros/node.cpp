@@ -81,8 +81,6 @@ bool SimNode::init() {
 
 void SimNode::run() {
   using clock = std::chrono::steady_clock;
-  uint64_t tick0 = world_->tick();
-  bool was_paused = true;
   auto last_paused_clock = clock::now();
   ros::CallbackQueue& callbacks = *ros::getGlobalCallbackQueue();
   while (ros::ok()) {
@@ -93,7 +91,7 @@ void SimNode::run() {
       ros::spinOnce();
     }
     if (paused_) {
-      was_paused = true;
+      repace_ = true;
       // keep /clock alive while paused, at 10 Hz of wall time
       auto now = clock::now();
       if (now - last_paused_clock > std::chrono::milliseconds(100)) {
@@ -108,11 +106,9 @@ void SimNode::run() {
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
       continue;
     }
-    if (was_paused || tick0 > world_->tick() || repace_) {
-      // (re)start pacing after a pause, a reset or a new real-time factor
-      tick0 = world_->tick();
-      pacer_.restart(clock::now(), tick0);
-      was_paused = false;
+    if (repace_) {
+      // (re)start pacing at the start, after a pause, a reset or a new real-time factor
+      pacer_.restart(clock::now(), world_->tick());
       repace_ = false;
     }
     try {

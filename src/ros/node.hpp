@@ -134,7 +134,8 @@ class SimNode : public NodeContext {
   bool paused_ = false;
   ros::Publisher clock_pub_, model_states_pub_, link_states_pub_;
   ros::Subscriber set_model_state_sub_, set_link_state_sub_;  // the /gazebo/set_*_state topics
-  bool repace_ = false;  // the real-time factor changed or the time went back to 0: the pacing restarts from now
+  // the pacing restarts from now: at the start, after a pause, a reset (time back to 0) or a new real-time factor
+  bool repace_ = true;
   // rtf > 0: the steps' wall-time schedule; a lag over 10 ms is dropped, not made up
   Pacer pacer_{std::chrono::milliseconds(10)};
   std::vector<ros::ServiceServer> services_;

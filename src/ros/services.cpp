@@ -235,7 +235,7 @@ bool SimNode::properties(gazebo_msgs::GetWorldProperties::Request&, gazebo_msgs:
 
 bool SimNode::reset_simulation(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   world_->reset();
-  // the schedule restarts from now at tick 0 (a world reset at tick 0 itself is not seen from the tick alone)
+  // the schedule restarts from now at tick 0
   repace_ = true;
   ROS_INFO("car: simulation reset: time 0, every model where it started");
   publish_clock();

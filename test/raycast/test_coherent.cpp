@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "car_sim/raycast.hpp"
+#include "xml_util.hpp"
 
 using namespace car_sim;
 
@@ -44,9 +45,7 @@ Shape plane() {
 Eigen::Isometry3d at(double x, double y, double z, double yaw = 0, double pitch = 0, double roll = 0) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.translation() = Eigen::Vector3d(x, y, z);
-  T.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
-                Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
-                   .toRotationMatrix();
+  T.linear() = detail::rpy_to_matrix(roll, pitch, yaw);
   return T;
 }
 
