@@ -18,6 +18,8 @@ class Recorder:
         # /rosout merges many nodes' lines whose stamps interleave (each node's clock lags differently): a stamp
         # going back there is no reset, so a log recorder keeps every message
         self.keep_all = topic == '/rosout'
+        # set by restart(): the latest stamp [s] the new run's first message can have
+        self.first_by = None
         self.sub = rospy.Subscriber(topic, msg_type, self._cb, queue_size=None, tcp_nodelay=True)
 
     def _cb(self, msg):
@@ -26,10 +28,28 @@ class Recorder:
             # run's messages. Messages published just before a pause can arrive after a test cleared the records;
             # kept, a stale message stamped late in the old run would satisfy until() at once.
             header = getattr(msg, 'header', None)
+            if self.first_by is not None and header is not None:
+                if header.stamp.to_sec() > self.first_by:
+                    return  # the previous run's, published before the pause and read only now
+                self.first_by = None
             if (not self.keep_all and header is not None and self.msgs
                     and header.stamp < self.msgs[-1].header.stamp):
                 self.msgs.clear()
             self.msgs.append(msg)
+
+    def restart(self, first_by=0.2):
+        """Forgets the records before a run that starts from sim time 0 (after a reset, while paused).
+
+        The previous run's last messages can still be in flight: the simulator sent them before the pause, and on a
+        busy machine this process reads them late, after the records were cleared. One of them, stamped late in the
+        old run, would satisfy until() at once (rostest drive once measured 0 m driven that way). They all come
+        before the new run's first message on the publisher's one connection, and that message is stamped within
+        one publish period of 0, so until a message stamped at or before first_by [s] arrives, later stamps are
+        dropped. The default, 0.2 s, is longer than the period of every topic car's rostests record (the slowest,
+        /scan at 5.5 Hz, publishes at 0.18 s) and shorter than every run they make."""
+        with self.lock:
+            self.msgs.clear()
+            self.first_by = first_by
 
     def wait_connected(self, timeout=30.0):
         """Waits (wall time) for the publisher to connect, since sim time stands still while paused."""

@@ -32,8 +32,7 @@ class CameraPartsTest(unittest.TestCase):
         state.pose.position.x, state.pose.position.y, state.pose.orientation.w = x, Y, 1.0
         self.assertTrue(call('/gazebo/set_model_state', SetModelState, state).success)
         for r in recorders:
-            with r.lock:
-                r.msgs.clear()
+            r.restart()
         simtest.wait_for('the clock back at 0', lambda: rospy.get_rostime().to_sec() == 0.0)
         call('/gazebo/unpause_physics')
         for r in recorders:

@@ -35,8 +35,7 @@ class DriveTest(unittest.TestCase):
             state.pose.orientation.z, state.pose.orientation.w = math.sin(yaw / 2), math.cos(yaw / 2)
             self.assertTrue(call('/gazebo/set_model_state', SetModelState, state).success)
         self.pub = command(v, w)
-        with self.truth.lock:
-            self.truth.msgs.clear()
+        self.truth.restart()
         if run:
             call('/gazebo/unpause_physics')
 

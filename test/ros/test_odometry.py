@@ -17,8 +17,7 @@ def run_lap(odom, truth):
     call('/gazebo/reset_simulation')
     command(1.0, 1.0)
     for r in (odom, truth):
-        with r.lock:
-            r.msgs.clear()
+        r.restart()
     call('/gazebo/unpause_physics')
     o, t = odom.until(LAP + 0.05), truth.until(LAP + 0.05)
     call('/gazebo/pause_physics')

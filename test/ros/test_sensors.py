@@ -80,8 +80,7 @@ class SensorsTest(unittest.TestCase):
         state.pose.orientation.z, state.pose.orientation.w = math.sin(yaw / 2), math.cos(yaw / 2)
         self.assertTrue(call('/gazebo/set_model_state', SetModelState, state).success)
         for r in (self.scan, self.depth, self.cloud, self.info):
-            with r.lock:
-                r.msgs.clear()
+            r.restart()
         # the reset's /clock (t = 0, sent every 0.1 s of wall time while paused) must reach this node before the
         # run's first messages: a later jump back in time would make the TF listener clear its buffer
         simtest.wait_for('the clock back at 0', lambda: rospy.get_rostime().to_sec() == 0.0)
