@@ -131,7 +131,8 @@ class GazeboMsgsClientTest(unittest.TestCase):
         stamps = []
         # every message (rospy's own sim-time /clock subscription would bound it at 1: simtest.receive_all)
         sub = simtest.receive_all(rospy.Subscriber('/clock', Clock, lambda m: stamps.append(m.clock.to_sec())))
-        time.sleep(0.5)
+        # connected before the run (a wall-time sleep here was a guess: a busy machine connects later)
+        simtest.wait_publisher(sub)
         self.gz.step_until(0.5)
         paused_at = self.gz.world().sim_time
         sub.unregister()
