@@ -13,43 +13,48 @@ class Recorder:
     """Keeps every message of a topic, in arrival order, with its header stamp in seconds."""
 
     def __init__(self, topic, msg_type=Odometry):
+        self.topic, self.msg_type = topic, msg_type
         self.msgs = []
         self.lock = threading.Lock()
         # /rosout merges many nodes' lines whose stamps interleave (each node's clock lags differently): a stamp
         # going back there is no reset, so a log recorder keeps every message
         self.keep_all = topic == '/rosout'
-        # set by restart(): the latest stamp [s] the new run's first message can have
-        self.first_by = None
-        self.sub = rospy.Subscriber(topic, msg_type, self._cb, queue_size=None, tcp_nodelay=True)
+        # each subscription's messages carry its number: restart() makes a new one and ignores the old
+        self.generation = 0
+        self.sub = self._subscribe()
 
-    def _cb(self, msg):
+    def _subscribe(self):
+        return rospy.Subscriber(self.topic, self.msg_type, self._cb, callback_args=self.generation, queue_size=None,
+                                tcp_nodelay=True)
+
+    def _cb(self, msg, generation=0):
         with self.lock:
+            if generation != self.generation:
+                return  # read from a connection restart() closed
             # A stamp earlier than the last one starts a new run (a reset put sim time back to 0): drop the old
-            # run's messages. Messages published just before a pause can arrive after a test cleared the records;
-            # kept, a stale message stamped late in the old run would satisfy until() at once.
+            # run's messages.
             header = getattr(msg, 'header', None)
-            if self.first_by is not None and header is not None:
-                if header.stamp.to_sec() > self.first_by:
-                    return  # the previous run's, published before the pause and read only now
-                self.first_by = None
             if (not self.keep_all and header is not None and self.msgs
                     and header.stamp < self.msgs[-1].header.stamp):
                 self.msgs.clear()
             self.msgs.append(msg)
 
-    def restart(self, first_by=0.2):
-        """Forgets the records before a run that starts from sim time 0 (after a reset, while paused).
+    def restart(self):
+        """Forgets the records before a new run (call it while the simulation is paused) and subscribes again.
 
-        The previous run's last messages can still be in flight: the simulator sent them before the pause, and on a
-        busy machine this process reads them late, after the records were cleared. One of them, stamped late in the
-        old run, would satisfy until() at once (rostest drive once measured 0 m driven that way). They all come
-        before the new run's first message on the publisher's one connection, and that message is stamped within
-        one publish period of 0, so until a message stamped at or before first_by [s] arrives, later stamps are
-        dropped. The default, 0.2 s, is longer than the period of every topic car's rostests record (the slowest,
-        /scan at 5.5 Hz, publishes at 0.18 s) and shorter than every run they make."""
+        Clearing the list alone is not enough: the previous run's last messages can still be in flight (sent before
+        the pause, read late by this process on a busy machine), and one stamped late in the old run satisfies
+        until() at once (rostest drive once measured 0 m driven that way). Nor can they be told from the new run's
+        by their stamps, since messages can be dropped on the way (a connection's queue drops the oldest). A new
+        connection carries only what is published after it was made, and the old connection's stragglers are
+        ignored by their generation. The topic must have no other subscriber in this process: rospy would share
+        the old connection with it."""
         with self.lock:
+            self.generation += 1
             self.msgs.clear()
-            self.first_by = first_by
+        self.sub.unregister()
+        self.sub = self._subscribe()
+        self.wait_connected()
 
     def wait_connected(self, timeout=30.0):
         """Waits (wall time) for the publisher to connect, since sim time stands still while paused."""
