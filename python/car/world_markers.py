@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import sys
+import threading
 
 import numpy as np
 
@@ -107,22 +108,16 @@ def main(argv=None) -> int:
         rospy.logfatal('world_markers: %s', e)
         return 1
     specs = marker_specs(desc)
-    pub = rospy.Publisher('world_markers', MarkerArray, queue_size=1, latch=True)
+    follower = _Follower() if follow else None
+    pub = rospy.Publisher('world_markers', MarkerArray, queue_size=1, latch=True,
+                          subscriber_listener=follower.listener() if follow else None)
     pub.publish(to_marker_array(specs, frame))
     rospy.loginfo('world_markers: %s: %d markers of %d models in frame %s%s', path, len(specs), len(desc['models']),
-                  frame, ', following moving models' if follow else '')
+                  frame, ', following moving models while someone subscribes' if follow else '')
     if follow:
         moving = {s['ns'] for s in specs if not s['static']}
         latest = {}
-        # model_states comes at 100 Hz; the markers follow at `rate`: keep the newest message's bytes and unpack
-        # only the one a tick uses (rospy.AnyMsg), not every message
-        newest = [None]
-
-        def on_states(raw):
-            newest[0] = raw
-
         from gazebo_msgs.msg import ModelStates
-        rospy.Subscriber('/gazebo/model_states', rospy.AnyMsg, on_states, queue_size=1)
         last_sent = {}
         r = rospy.Rate(rate)
         while not rospy.is_shutdown():
@@ -132,7 +127,7 @@ def main(argv=None) -> int:
                 if rospy.is_shutdown():
                     break
                 continue
-            raw, newest[0] = newest[0], None
+            raw = follower.take()
             if raw is not None:
                 msg = ModelStates().deserialize(raw._buff)
                 for name, pose in zip(msg.name, msg.pose):
@@ -155,6 +150,47 @@ def main(argv=None) -> int:
     else:
         rospy.spin()
     return 0
+
+
+class _Follower:
+    """/gazebo/model_states, subscribed only while /world_markers has a subscriber: nobody looking (a headless run,
+    a benchmark), the simulator neither builds nor sends model_states for this node (100 Hz of sim time), as a
+    gazebo_ros sensor stays off without subscribers. model_states comes at 100 Hz and the markers follow at `rate`:
+    the newest message's bytes are kept (rospy.AnyMsg) and only the one a tick uses is unpacked."""
+
+    def __init__(self):
+        self.lock = threading.Lock()
+        self.sub = None
+        self.newest = None
+
+    def _on_states(self, raw):
+        self.newest = raw
+
+    def take(self):
+        raw, self.newest = self.newest, None
+        return raw
+
+    def listener(self):
+        import rospy
+        follower = self
+
+        class Listener(rospy.SubscribeListener):
+            def peer_subscribe(self, topic_name, topic_publish, peer_publish):
+                with follower.lock:
+                    if follower.sub is None:
+                        follower.sub = rospy.Subscriber('/gazebo/model_states', rospy.AnyMsg, follower._on_states,
+                                                        queue_size=1)
+                        rospy.loginfo('world_markers: %s has a subscriber: following /gazebo/model_states',
+                                      topic_name)
+
+            def peer_unsubscribe(self, topic_name, num_peers):
+                with follower.lock:
+                    if num_peers == 0 and follower.sub is not None:
+                        follower.sub.unregister()
+                        follower.sub = None
+                        rospy.loginfo('world_markers: %s has no subscriber: /gazebo/model_states left', topic_name)
+
+        return Listener()
 
 
 def _rot(q):

@@ -4,12 +4,14 @@ import math
 import time
 import unittest
 
+import rosgraph
 import rospy
 import rostest
 from gazebo_msgs.msg import ModelState
 from gazebo_msgs.srv import SetModelState
 from visualization_msgs.msg import MarkerArray
 
+import simtest
 from simtest import call
 
 
@@ -18,15 +20,35 @@ class WorldMarkersTest(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node('test_world_markers')
         cls.latest = []
-        rospy.Subscriber('/world_markers', MarkerArray, cls.latest.append)
+        cls.sub = None
 
     def wait_for(self, predicate, timeout=30):
+        if WorldMarkersTest.sub is None:
+            WorldMarkersTest.sub = rospy.Subscriber('/world_markers', MarkerArray, self.latest.append)
         deadline = time.time() + timeout
         while time.time() < deadline:
             if self.latest and predicate(self.latest[-1]):
                 return self.latest[-1]
             time.sleep(0.05)
         self.fail('no matching MarkerArray within %d s' % timeout)
+
+    def test_0_model_states_followed_only_while_the_markers_have_a_subscriber(self):
+        master = rosgraph.Master(rospy.get_name())
+
+        def subscribers(topic):
+            return next((nodes for t, nodes in master.getSystemState()[1] if t == topic), [])
+
+        def publishers(topic):
+            return next((nodes for t, nodes in master.getSystemState()[0] if t == topic), [])
+
+        simtest.wait_for('world_markers up', lambda: '/world_markers' in publishers('/world_markers'))
+        self.assertNotIn('/world_markers', subscribers('/gazebo/model_states'))
+        sub = rospy.Subscriber('/world_markers', MarkerArray, lambda m: None)
+        simtest.wait_for('world_markers following model_states',
+                         lambda: '/world_markers' in subscribers('/gazebo/model_states'))
+        sub.unregister()
+        simtest.wait_for('world_markers leaving model_states',
+                         lambda: '/world_markers' not in subscribers('/gazebo/model_states'))
 
     def test_latched_markers_of_every_visual(self):
         arr = self.wait_for(lambda a: True)
