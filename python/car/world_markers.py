@@ -110,7 +110,7 @@ def main(argv=None) -> int:
     specs = marker_specs(desc)
     follower = _Follower() if follow else None
     pub = rospy.Publisher('world_markers', MarkerArray, queue_size=1, latch=True,
-                          subscriber_listener=follower.listener() if follow else None)
+                          subscriber_listener=follower.listener() if follower else None)
     pub.publish(to_marker_array(specs, frame))
     rospy.loginfo('world_markers: %s: %d markers of %d models in frame %s%s', path, len(specs), len(desc['models']),
                   frame, ', following moving models while someone subscribes' if follow else '')

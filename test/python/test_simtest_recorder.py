@@ -13,11 +13,8 @@ import simtest  # noqa: E402
 
 class FakeSubscriber:
     """Stands in for rospy.Subscriber (no master): connected at once, remembers whether it was unregistered."""
-    made = []
-
     def __init__(self, topic, msg_type, cb, callback_args=None, **kwargs):
         self.name, self.cb, self.args, self.unregistered = topic, cb, callback_args, False
-        FakeSubscriber.made.append(self)
 
     def deliver(self, msg):
         self.cb(msg, self.args)
@@ -31,7 +28,6 @@ class FakeSubscriber:
 
 @pytest.fixture
 def recorder(monkeypatch):
-    FakeSubscriber.made = []
     monkeypatch.setattr(simtest.rospy, 'Subscriber', FakeSubscriber)
     return simtest.Recorder('/gazebo/ground_truth/mycar')
 

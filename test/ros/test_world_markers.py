@@ -35,20 +35,18 @@ class WorldMarkersTest(unittest.TestCase):
     def test_0_model_states_followed_only_while_the_markers_have_a_subscriber(self):
         master = rosgraph.Master(rospy.get_name())
 
-        def subscribers(topic):
-            return next((nodes for t, nodes in master.getSystemState()[1] if t == topic), [])
+        def nodes(side, topic):
+            """The nodes on one side of topic (0: publishers, 1: subscribers), from the master."""
+            return dict(master.getSystemState()[side]).get(topic, [])
 
-        def publishers(topic):
-            return next((nodes for t, nodes in master.getSystemState()[0] if t == topic), [])
-
-        simtest.wait_for('world_markers up', lambda: '/world_markers' in publishers('/world_markers'))
-        self.assertNotIn('/world_markers', subscribers('/gazebo/model_states'))
+        simtest.wait_for('world_markers up', lambda: '/world_markers' in nodes(0, '/world_markers'))
+        self.assertNotIn('/world_markers', nodes(1, '/gazebo/model_states'))
         sub = rospy.Subscriber('/world_markers', MarkerArray, lambda m: None)
         simtest.wait_for('world_markers following model_states',
-                         lambda: '/world_markers' in subscribers('/gazebo/model_states'))
+                         lambda: '/world_markers' in nodes(1, '/gazebo/model_states'))
         sub.unregister()
         simtest.wait_for('world_markers leaving model_states',
-                         lambda: '/world_markers' not in subscribers('/gazebo/model_states'))
+                         lambda: '/world_markers' not in nodes(1, '/gazebo/model_states'))
 
     def test_latched_markers_of_every_visual(self):
         arr = self.wait_for(lambda a: True)
