@@ -13,7 +13,7 @@ import re
 
 import pytest
 
-from conftest import ROOT
+from conftest import ROOT, generated_header
 
 UPSTREAM_MD5 = {
     'controller_manager_msgs/msg/ControllerState': 'aeb6b261d97793ab74099a3740245272',
@@ -83,7 +83,6 @@ def test_python_type_matches_upstream(key):
 @pytest.mark.parametrize('key', sorted(UPSTREAM_MD5))
 def test_cpp_header_matches_upstream(key):
     pkg, _, name = key.split('/')
-    header = os.path.join(ROOT, '.ws', 'devel', 'include', pkg, name + '.h')
-    if not os.path.exists(header):
-        pytest.skip('no generated header %s (a real %s is in use, or no build yet)' % (header, pkg))
+    header = generated_header(pkg, name)
+    assert os.path.isfile(header), 'catkin generated no %s from compat/%s' % (header, pkg)
     assert UPSTREAM_MD5[key] in re.findall(r'return "([0-9a-f]{32})";', open(header).read())

@@ -14,10 +14,9 @@ import re
 
 import pytest
 
-from conftest import ROOT
+from conftest import ROOT, generated_header
 
 COMPAT = os.path.join(ROOT, 'compat', 'gazebo_msgs')
-DEVEL_INCLUDE = os.path.join(ROOT, '.ws', 'devel', 'include', 'gazebo_msgs')
 
 UPSTREAM_MD5 = {
     'msg/ContactState': '48c0ffb054b8c444f870cecea1ee50d9',
@@ -97,10 +96,8 @@ def test_python_type_matches_upstream(key):
 
 @pytest.mark.parametrize('key', sorted(UPSTREAM_MD5))
 def test_cpp_header_matches_upstream(key):
-    name = key.split('/')[1]
-    header = os.path.join(DEVEL_INCLUDE, name + '.h')
-    if not os.path.exists(header):
-        pytest.skip('no generated headers in %s (a real gazebo_msgs is in use, or no build yet)' % DEVEL_INCLUDE)
+    header = generated_header('gazebo_msgs', key.split('/')[1])
+    assert os.path.isfile(header), 'catkin generated no %s from compat/gazebo_msgs' % header
     text = open(header).read()
     sums = re.findall(r'return "([0-9a-f]{32})";', text)
     assert UPSTREAM_MD5[key] in sums
