@@ -4,8 +4,8 @@ import sys
 
 import pytest
 
-rospy = pytest.importorskip('rospy')
-from nav_msgs.msg import Odometry  # noqa: E402
+import rospy
+from nav_msgs.msg import Odometry
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), 'ros'))
 import simtest  # noqa: E402
