@@ -2,7 +2,7 @@
 """MuJoCo (PyPI `mujoco`) as a peer of car's physics: the seed car in box_house, built with MjSpec from the same
 descriptions car reads (car._core.load_urdf_file / load_world_file), stepped at 1 kHz.
 
-The model follows car's rules as closely as MuJoCo allows (README "How the car rolls"):
+The model follows car's rules as closely as MuJoCo allows (docs/COMPAT-physics.md "How the car rolls"):
 - links joined by fixed joints are one rigid body (MuJoCo: child bodies without a joint); a massless root link
   (base_footprint) is skipped, its fixed child becomes the free-floating base;
 - drive wheels are hinge joints on their URDF axis driven by velocity servos (force = kv (ctrl - qdot), capped at

@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""The README's performance table (issue 13's rows) from one `bash bench/run.sh --json FILE` run: each figure,
+"""The performance table of docs/BENCH.md from one `bash bench/run.sh --json FILE` run: each figure,
 its peer and ratio from the same run, the target, and whether it is met.
 
 Runs that took each figure N times (bench_physics.py --repeat N: key `bench.repeat`, with KEY.median beside each
 figure) get a median column and say so in the caption; older records (one sample each) render as before.
 
-usage: bench/table.py FILE.json      (prints Markdown)
+usage: bench/table.py FILE.json      (prints Markdown; the dated runs are docs/bench/*.json)
 """
 import json
 import sys
