@@ -44,51 +44,51 @@ def actual(node):
     return rows
 
 
-# spawn_sdf_model is built on another branch (SDF robots); until it is merged its row is checked on its own
-SDF = ('service', '/gazebo/spawn_sdf_model', 'gazebo_msgs/SpawnModel')
+def wait_ready(network, timeout=60.0):
+    """Waits (wall time, a bound for a hang) for node /gazebo's last advertisement: set_parameters with the ROS API
+    on, /clock with it off (docs/COMPAT-dropins.md); fails naming it."""
+    last = ('service', '/gazebo/set_parameters', 'dynamic_reconfigure/Reconfigure') if network else \
+        ('published', '/clock', 'rosgraph_msgs/Clock')
+    deadline = time.time() + timeout
+    while last not in actual('/gazebo'):
+        if time.time() > deadline:
+            raise AssertionError('node /gazebo has not offered %s %s within %.0f s' % (last[0], last[1], timeout))
+        time.sleep(0.2)
 
 
-class DropinApi(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        rospy.init_node('dropin_api')
-
-    def test_spawn_sdf_model_offered(self):
-        if not rospy.get_param('~network'):
-            return
-        try:
-            rospy.wait_for_service('/gazebo/set_parameters', timeout=60)
-            rospy.wait_for_service('/gazebo/spawn_sdf_model', timeout=1)
-        except rospy.ROSException:
-            self.skipTest('/gazebo/spawn_sdf_model: not in this build (the SDF-robots branch adds it)')
-        self.assertEqual(rosservice.get_service_type(SDF[1]), SDF[2])
+class ApiLists(unittest.TestCase):
+    """The exact lists, for either value; a subclass sets network and adds what that value means."""
+    network = None
 
     def test_lists_and_types_match_the_doc(self):
-        network = rospy.get_param('~network')
-        want = expected(network) - {SDF}
+        want = expected(self.network)
         self.assertGreater(len(want), 4)
-        # the node is ready when its last advertisement is there: set_parameters (true) or /clock (false)
-        last = ('service', '/gazebo/set_parameters', 'dynamic_reconfigure/Reconfigure') if network else \
-            ('published', '/clock', 'rosgraph_msgs/Clock')
-        deadline = time.time() + 60
-        while last not in actual('/gazebo') and time.time() < deadline:
-            time.sleep(0.2)
+        wait_ready(self.network)
         model = rospy.get_param('~wait_model', '')
         if model:
             # a spawned robot (car_extras false) adds nothing to the node's lists
             from gazebo_msgs.srv import GetWorldProperties
             props = rospy.ServiceProxy('/gazebo/get_world_properties', GetWorldProperties)
+            deadline = time.time() + 60
             while model not in props().model_names and time.time() < deadline:
                 time.sleep(0.2)
             self.assertIn(model, props().model_names)
+        # wait_ready saw the last advertisement; a second lets the master's list settle
         time.sleep(1.0)
-        got = actual('/gazebo') - {SDF}
+        got = actual('/gazebo')
         self.assertEqual(sorted(got - want), [], 'offered but not in the doc')
         self.assertEqual(sorted(want - got), [], 'in the doc but not offered')
 
+
+class DropinApiOn(ApiLists):
+    """enable_ros_network true (dropin_api.test, dropin_extras.test)."""
+    network = True
+
+    def test_spawn_sdf_model_offered(self):
+        wait_ready(True)
+        self.assertIn(('service', '/gazebo/spawn_sdf_model', 'gazebo_msgs/SpawnModel'), actual('/gazebo'))
+
     def test_reconfigure_reads_the_world_and_sets_gravity_through_set_physics_properties(self):
-        if not rospy.get_param('~network'):
-            return
         from dynamic_reconfigure.client import Client
         from gazebo_msgs.srv import GetPhysicsProperties
         client = Client('/gazebo', timeout=60)
@@ -104,5 +104,23 @@ class DropinApi(unittest.TestCase):
         self.assertEqual((c['time_step'], get().time_step), (0.001, 0.001))
 
 
+class DropinApiOff(ApiLists):
+    """enable_ros_network false (dropin_api_off.test): what "off" means beyond the exact lists."""
+    network = False
+
+    def test_no_spawn_service(self):
+        wait_ready(False)
+        # upstream's gazebo_ros advertises its services only with the ROS network on
+        self.assertEqual(sorted(r[1] for r in actual('/gazebo') if r[0] == 'service' and 'spawn' in r[1]), [])
+
+    def test_no_reconfigure_server(self):
+        wait_ready(False)
+        names = {r[1] for r in actual('/gazebo')}
+        # upstream's server waits for the physics services, which never come with the ROS API off
+        self.assertEqual(sorted(names & {'/gazebo/set_parameters', '/gazebo/parameter_descriptions',
+                                         '/gazebo/parameter_updates'}), [])
+
+
 if __name__ == '__main__':
-    rostest.rosrun('car', 'dropin_api', DropinApi)
+    rospy.init_node('dropin_api')
+    rostest.rosrun('car', 'dropin_api', DropinApiOn if rospy.get_param('~network') else DropinApiOff)
