@@ -2,10 +2,20 @@
 # Runs every test tier through catkin: gtest (core), pytest (tools), rostest (launch files).
 # The verdict comes from catkin_test_results, since `catkin_make run_tests` exits 0 on failures.
 set -euo pipefail
+# The closing line is always "N passed, N failed, N skipped". Where nothing could be counted (the set-up, the
+# build or catkin_test_results failed), the one failure counted is that.
+closed=0
+uncounted() {
+  echo "test: $1"
+  echo "0 passed, 1 failed, 0 skipped"
+  closed=1
+  exit 1
+}
+trap '[ "$closed" = 1 ] || { echo "test: stopped before the tests could be counted"; echo "0 passed, 1 failed, 0 skipped"; }' EXIT
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 cd "$ROOT/.ws"
 rm -rf build/test_results
-catkin_make run_tests -j2 > test.log 2>&1 || { tail -n 80 test.log; echo "test: build of the tests failed"; exit 1; }
+catkin_make run_tests -j2 > test.log 2>&1 || { tail -n 80 test.log; uncounted "build of the tests failed"; }
 grep -E '^\[ *(RUN|  FAILED|  PASSED) *\]|passed|failed|FAILURE|ERROR' test.log | grep -v '^\[ RUN' | tail -n 40 || true
 set +e
 summary="$(catkin_test_results build/test_results 2>&1)"
@@ -13,9 +23,11 @@ rc=$?
 set -e
 echo "$summary" | tail -n 30
 # One closing line: N passed, N failed, N skipped.
-read -r total errors failures skipped < <(echo "$summary" | sed -n 's/^Summary: \([0-9]*\) tests, \([0-9]*\) errors, \([0-9]*\) failures, \([0-9]*\) skipped.*/\1 \2 \3 \4/p' | tail -n 1)
-total=${total:-0}; errors=${errors:-0}; failures=${failures:-0}; skipped=${skipped:-0}
+counts="$(echo "$summary" | sed -n 's/^Summary: \([0-9]*\) tests, \([0-9]*\) errors, \([0-9]*\) failures, \([0-9]*\) skipped.*/\1 \2 \3 \4/p' | tail -n 1)"
+[ -n "$counts" ] || uncounted "catkin_test_results printed no Summary line (exit $rc): nothing could be counted"
+read -r total errors failures skipped <<< "$counts"
 failed=$((errors + failures))
+closed=1
 echo "$((total - failed - skipped)) passed, $failed failed, $skipped skipped"
 if [ "$rc" -ne 0 ] || [ "$failed" -ne 0 ] || [ "$total" -eq 0 ]; then
   # which tests failed, and the tail of each one's message (the summary above only counts them)
