@@ -67,8 +67,11 @@ class GazeboClient:
 
     def step_until(self, t):
         self.unpause()
+        # the bound is wall time against a hang; running out of it fails
         deadline = time.time() + 120
-        while self.world().sim_time < t and time.time() < deadline:
+        while self.world().sim_time < t:
+            if time.time() > deadline:
+                raise AssertionError('sim time %.3f s not reached within 120 s (at %.3f s)' % (t, self.world().sim_time))
             time.sleep(0.01)
         self.pause()
 

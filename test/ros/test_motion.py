@@ -19,7 +19,9 @@ def publisher(topic, msg_type):
     """A latched publisher that has reached the simulator (synchronous: see simtest.command)."""
     pub = rospy.Publisher(topic, msg_type, queue_size=None, latch=True)
     deadline = time.time() + 30
-    while pub.get_num_connections() == 0 and time.time() < deadline:
+    while pub.get_num_connections() == 0:
+        if time.time() > deadline:  # a latched message would reach the simulator late, after the run began
+            raise AssertionError('nobody subscribes to %s within 30 s' % topic)
         time.sleep(0.05)
     return pub
 

@@ -84,8 +84,12 @@ class ServicesApiTest(unittest.TestCase):
     def run_until(self, t):
         """Runs until sim time t [s] has passed, then pauses."""
         call('/gazebo/unpause_physics')
+        # the bound is wall time against a hang; running out of it fails (a "nothing moved" check must not pass on a
+        # simulator that never stepped)
         deadline = time.time() + 120
-        while self.world().sim_time < t and time.time() < deadline:
+        while self.world().sim_time < t:
+            if time.time() > deadline:
+                raise AssertionError('sim time %.3f s not reached within 120 s (at %.3f s)' % (t, self.world().sim_time))
             time.sleep(0.01)
         call('/gazebo/pause_physics')
 
