@@ -57,7 +57,11 @@ class SdfFile(unittest.TestCase):
         # after 2 s of spin-up, the points of the next 10 s lie on a circle of radius v / w = 0.2 / 0.4 = 0.5 m
         points = [xy(m) for m in msgs if t0 + 2.0 <= m.header.stamp.to_sec() <= t0 + 12.0]
         _, radius = fit_circle(points)
-        self.assertAlmostEqual(radius, 0.5, delta=0.05)
+        # Tolerance 1 mm: two driven wheels that do not slip go exactly v / w. They do not slip: the turn asks
+        # v^2 / r = 0.08 m/s^2 sideways and the caster's drag (mu 0.1 on its share of 2.45 kg) far less than the
+        # tyres' mu 1 holds (9.8 m/s^2); what is left is the velocity motors' solver residual, which their angle
+        # anchor bounds to 0.3 mm per 10 s (docs/COMPAT-physics.md).
+        self.assertAlmostEqual(radius, 0.5, delta=0.001)
         command(0.0, 0.0)
 
 
