@@ -68,11 +68,6 @@ def _ground_models(world_file):
     return _GROUNDS[key]
 
 
-def _yaw(q):
-    x, y, z, w = q
-    return math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
-
-
 def simulate(sc: dict) -> dict:
     """Runs one validated scenario; returns {'sim_time', 'robots': [per-robot metrics and trajectory]}."""
     from car import _core
