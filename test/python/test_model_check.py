@@ -226,3 +226,15 @@ def test_attribute_form_values_are_read():
            "<kp value='1e7'/></gazebo></robot>")
     r = model_check.check_text(xml, 'values.urdf')
     assert [f for f in r['findings'] if f['severity'] == 'error'] == []
+
+
+def test_huge_mass_is_named_by_the_mass_range_finding_not_a_nan_percentage():
+    # issue 29 item 5: a 1e300 kg link made the inertia comparison print "nan% off"
+    path = os.path.join(DATA, 'bad', 'mass_huge.urdf')
+    with open(path) as f:
+        r = model_check.check_text(f.read(), path)
+    assert [f for f in r['findings'] if f['code'] == 'inertia-mismatch'] == []
+    f = finding(r, 'mass-range', 'link[base_link]/inertial/mass')
+    assert f['message'] == ('mass 1e+300 kg is outside 1e-06..1e+06 kg (a unit mistake? the solver loses accuracy '
+                            'at such masses)')
+    assert 'nan' not in model_check.format_report(r)
