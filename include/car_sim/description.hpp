@@ -35,6 +35,7 @@ struct WorldVisual {
 struct WorldLink {
   std::string name;
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // link frame in the model frame
+  bool gravity = true;                                     // <gravity>: false = the link feels no gravity
   std::optional<Inertial> inertial;
   std::vector<WorldCollision> collisions;
   std::vector<WorldVisual> visuals;

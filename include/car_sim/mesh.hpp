@@ -19,10 +19,12 @@ std::shared_ptr<const TriMesh> load_mesh(const std::string& path);
 std::string mesh_search_description(const std::string& uri, const std::string& base_dir);
 
 // Resolves and loads every mesh of a robot's collisions and visuals that is not loaded yet. Relative URIs start at
-// base_dir (the URDF file's folder; "" for text: the current folder). Throws LoadError naming the link, the URI and
-// where it looked (or why the file could not be read).
+// base_dir (the URDF file's folder; "" for text: the current folder). A collision mesh that cannot be found or read
+// throws LoadError naming the link, the URI and where it looked (or why); a visual's is a "visual-mesh-missing"
+// warning appended to model->diagnostics, and that visual keeps no triangles (Gazebo simulates such a model).
 void load_meshes(RobotModel* model, const std::string& base_dir);
-// The same for a world's collisions and visuals (relative URIs from the world file's folder).
+// The same for a world's collisions and visuals (relative URIs from the world file's folder; warnings in
+// world->diagnostics).
 void load_meshes(WorldDescription* world, const std::string& base_dir);
 
 }  // namespace car_sim

@@ -26,6 +26,7 @@ from car import materials
 from car.world_geometry import transform
 
 PLANE_SIZE = 40.0  # [m] planes are drawn as this square, 1 mm thick, top face on the plane
+PLACEHOLDER_SIZE = 0.1  # [m] edge of the wireframe cube drawn where a visual mesh file is missing
 SCAN_COLOUR = (255, 0, 255)  # lidar points: magenta, a colour no material of the seed world or car has
 # the odometry trail: green, apart from the seed car's orange and the scan's magenta
 TRAIL_COLOUR = (40, 190, 90)
@@ -160,9 +161,15 @@ class WebScene:
                 path = _core.resolve_uri(s.get('uri') or s.get('filename') or '', base_dir) or ''
             if path and os.path.isfile(path):
                 import trimesh
-                mesh = trimesh.load(path, force='mesh')
-                mesh.visual = trimesh.visual.ColorVisuals(mesh, face_colors=list(c) + [255])
-                return self.scene.add_mesh_trimesh(name, mesh, scale=tuple(s.get('scale', (1, 1, 1))), **kw)
+                try:
+                    mesh = trimesh.load(path, force='mesh')
+                    mesh.visual = trimesh.visual.ColorVisuals(mesh, face_colors=list(c) + [255])
+                    return self.scene.add_mesh_trimesh(name, mesh, scale=tuple(s.get('scale', (1, 1, 1))), **kw)
+                except Exception:  # unreadable: the placeholder below, as for a missing file
+                    pass
+            # a visual mesh that is missing (the core warned when it loaded the robot): a wireframe cube in its
+            # place, so the link still shows where it is
+            return self.scene.add_box(name, color=c, dimensions=(PLACEHOLDER_SIZE,) * 3, wireframe=True, **kw)
         return None
 
     def add_world(self, desc):

@@ -14,6 +14,7 @@
 
 #include "car_sim/description.hpp"
 #include "lumping.hpp"
+#include "validate.hpp"
 #include "xml_util.hpp"
 
 namespace car_sim {
@@ -144,12 +145,22 @@ Link convert_link(const sdf::Link& l, const std::string& where, RobotModel* m) {
   if (!why.empty())
     m->diagnostics.push_back({Severity::Error, "inertial", where + "/inertial", why, line_of(l.Element())});
   out.inertial = ci;
+  // <gravity>: SDF's per-link switch (default true), the URDF path's <gazebo reference><gravity>
+  if (l.Element() && l.Element()->HasElement("gravity")) out.gazebo.gravity = l.Element()->Get<bool>("gravity");
   std::string surface_from;
   for (uint64_t i = 0; i < l.CollisionCount(); ++i) {
     const sdf::Collision* c = l.CollisionByIndex(i);
     const std::string here = where + "/collision[" + c->Name() + "]";
     auto shape = to_shape(*c->Geom(), here, line_of(c->Element()), m);
     if (!shape) continue;
+    // a size <= 0: Gazebo 11 warns and simulates the model; car leaves the shape out (docs/COMPAT-validation.md)
+    if (detail::degenerate_shape(*shape)) {
+      m->diagnostics.push_back({Severity::Warning, "shape-size", here,
+                                "a size is not > 0; the collision is left out of the collision world (the model is "
+                                "simulated)",
+                                line_of(c->Element())});
+      continue;
+    }
     ignition::math::Pose3d cp;
     c->SemanticPose().Resolve(cp);  // rule 4: relative to the link
     shape->origin = to_iso(cp);
@@ -431,8 +442,9 @@ SdfRobot load_sdf_model_string(const std::string& xml, const std::string& source
                     "root element is not <sdf>; is this an SDF model?");
   check_includes(root, source_name, base_dir);
   sdf::Root sroot;
-  const sdf::Errors errors =
-      sroot.LoadSdfString(xml, parser_config(base_dir.empty() ? std::string() : base_dir + "/x.sdf"));
+  bool rewritten = false;  // SDF 1.4's bare-text material scripts, read as Gazebo 11 did (validate.hpp)
+  const sdf::Errors errors = sroot.LoadSdfString(detail::rewrite_bare_scripts(xml, &rewritten),
+                                                 parser_config(base_dir.empty() ? std::string() : base_dir + "/x.sdf"));
   if (!errors.empty()) fail_with(source_name, errors);
   const sdf::Model* model = sroot.Model();
   Eigen::Isometry3d world_pose = Eigen::Isometry3d::Identity();

@@ -31,7 +31,9 @@ Eigen::Isometry3d to_iso(const ignition::math::Pose3d& p) {
   const sdf::Error& e = errors.front();
   std::string reason = e.Message();
   if (errors.size() > 1) reason += " (and " + std::to_string(errors.size() - 1) + " more)";
-  throw LoadError(e.FilePath() ? *e.FilePath() : source, e.LineNumber() ? *e.LineNumber() : 0,
+  // sdformat names text it was given "data-string": the source stands for it
+  const bool named = e.FilePath() && *e.FilePath() != "data-string";
+  throw LoadError(named ? *e.FilePath() : source, e.LineNumber() ? *e.LineNumber() : 0,
                   e.XmlPath() ? *e.XmlPath() : "", reason);
 }
 
@@ -112,6 +114,8 @@ WorldLink read_link(const sdf::Link& l, const std::string& model, WorldDescripti
   ignition::math::Pose3d p;
   l.SemanticPose().Resolve(p);  // relative to the model frame
   wl.pose = to_iso(p);
+  // <gravity>false</gravity>: SDF's per-link switch; the link feels no gravity (docs/COMPAT-sdf.md)
+  if (l.Element() && l.Element()->HasElement("gravity")) wl.gravity = l.Element()->Get<bool>("gravity");
   const auto& in = l.Inertial();
   // SDF's default when <inertial> is absent: 1 kg, unit inertia (docs/COMPAT-sdf.md 3); the DOM fills it in
   {
@@ -310,9 +314,14 @@ sdf::ParserConfig parser_config(const std::string& world_file) {
 WorldDescription load_world_file(const std::string& path) {
   std::ifstream probe(path);
   if (!probe) throw LoadError(path, 0, "", "cannot open file");
-  detail::prevalidate_sdf(std::string(std::istreambuf_iterator<char>(probe), {}), path, path.find('/') == std::string::npos ? "." : path.substr(0, path.rfind('/')));
+  const std::string text(std::istreambuf_iterator<char>(probe), {});
+  detail::prevalidate_sdf(text, path, path.find('/') == std::string::npos ? "." : path.substr(0, path.rfind('/')));
+  // SDF 1.4's bare-text material scripts, read as Gazebo 11 did (validate.hpp): then sdformat reads the rewritten
+  // text (includes resolve as from the file; errors name the file)
+  bool rewritten = false;
+  const std::string gz11 = detail::rewrite_bare_scripts(text, &rewritten);
   sdf::Root root;
-  const sdf::Errors errors = root.Load(path, parser_config(path));
+  const sdf::Errors errors = rewritten ? root.LoadSdfString(gz11, parser_config(path)) : root.Load(path, parser_config(path));
   if (!errors.empty()) fail_with(path, errors);
   WorldDescription d = convert(root, path);
   load_meshes(&d, path.find('/') == std::string::npos ? "." : path.substr(0, path.rfind('/')));
@@ -321,8 +330,9 @@ WorldDescription load_world_file(const std::string& path) {
 
 WorldDescription load_world_string(const std::string& xml, const std::string& source_name) {
   detail::prevalidate_sdf(xml, source_name, "");  // validate.cpp
+  bool rewritten = false;
   sdf::Root root;
-  const sdf::Errors errors = root.LoadSdfString(xml, parser_config(""));
+  const sdf::Errors errors = root.LoadSdfString(detail::rewrite_bare_scripts(xml, &rewritten), parser_config(""));
   if (!errors.empty()) fail_with(source_name, errors);
   WorldDescription d = convert(root, source_name);
   load_meshes(&d, "");

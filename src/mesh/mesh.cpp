@@ -105,13 +105,33 @@ std::string mesh_search_description(const std::string& uri, const std::string& b
   return path;
 }
 
+namespace {
+
+// A visual's mesh that cannot be found or read: Gazebo's server logs it and simulates the model (physics and
+// sensors use collisions), so it is a warning and the visual keeps no triangles (docs/COMPAT-spawn.md).
+void load_visual(Shape* s, const std::string& source, const std::string& element, const std::string& base_dir,
+                 std::vector<Diagnostic>* out) {
+  try {
+    load_shape(s, source, element, base_dir);
+  } catch (const LoadError& e) {
+    out->push_back({Severity::Warning, "visual-mesh-missing", element,
+                    e.reason() + "; the visual is not drawn (the model is simulated: physics and sensors use "
+                                 "its collisions)",
+                    0});
+  }
+}
+
+}  // namespace
+
 void load_meshes(RobotModel* model, const std::string& base_dir) {
   for (auto& l : model->links) {
     for (size_t i = 0; i < l.collisions.size(); ++i)
       load_shape(&l.collisions[i], model->source, "link[" + l.name + "]/collision[" + std::to_string(i) + "]/mesh",
                  base_dir);
     for (auto& v : l.visuals)
-      load_shape(&v.shape, model->source, "link[" + l.name + "]/visual[" + v.name + "]/mesh", base_dir);
+      if (v.shape.type == ShapeType::Mesh && !v.shape.mesh)
+        load_visual(&v.shape, model->source, "link[" + l.name + "]/visual[" + v.name + "]/mesh", base_dir,
+                    &model->diagnostics);
   }
 }
 
@@ -120,7 +140,9 @@ void load_meshes(WorldDescription* world, const std::string& base_dir) {
     for (auto& l : m.links) {
       const std::string where = "model[" + m.name + "]/link[" + l.name + "]";
       for (auto& c : l.collisions) load_shape(&c.shape, world->source, where + "/collision[" + c.name + "]/mesh", base_dir);
-      for (auto& v : l.visuals) load_shape(&v.shape, world->source, where + "/visual[" + v.name + "]/mesh", base_dir);
+      for (auto& v : l.visuals)
+        if (v.shape.type == ShapeType::Mesh && !v.shape.mesh)
+          load_visual(&v.shape, world->source, where + "/visual[" + v.name + "]/mesh", base_dir, &world->diagnostics);
     }
 }
 

@@ -488,6 +488,8 @@ RobotModel load_urdf_string(const std::string& xml, const std::string& source_na
   loader.check_colours(robot, "");
   loader.check_fixed_axes(robot);
   loader.check_inertials();
+  // collisions with a size <= 0 (validate_urdf warned about each): left out, as docs/COMPAT-validation.md says
+  detail::drop_degenerate_collisions(&model);
   parse_gazebo_extensions(robot, &model);
   parse_transmissions(robot, &model);
   // As sdformat's URDF reader: anchor to `world`, lump fixed joints, drop massless links on moving joints.

@@ -4,6 +4,7 @@
 // written.
 #include "validate.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -101,25 +102,47 @@ class UrdfCheck {
     if (!o) return;
     const std::string here = where + "/origin";
     std::vector<double> v;
-    if (numbers(o, "xyz", 3, here, &v))
-      for (double x : v)
-        if (std::abs(x) > limits::kLengthMax)
-          fail(o, here, "xyz '" + trim(o->Attribute("xyz")) + "' is beyond the limit " + num(limits::kLengthMax) +
-                            " m (positions that far lose precision in the ray scene's single precision)");
+    if (numbers(o, "xyz", 3, here, &v)) {
+      double far = 0.0;
+      for (double x : v) far = std::max(far, std::abs(x));
+      if (far > limits::kLengthRefuse)
+        fail(o, here, "xyz '" + trim(o->Attribute("xyz")) + "' is beyond the limit " + num(limits::kLengthRefuse) +
+                          " m (its square overflows the ray scene's single precision)");
+      if (far > limits::kLengthMax)
+        warn(o, "length-range", here, "xyz '" + trim(o->Attribute("xyz")) + "' is beyond " + num(limits::kLengthMax) +
+                                          " m (positions that far lose precision in the ray scene's single precision)");
+    }
     numbers(o, "rpy", 3, here, &v);
   }
 
-  void length(const tinyxml2::XMLElement* e, const char* attr, const std::string& where) {
+  bool length(const tinyxml2::XMLElement* e, const char* attr, const std::string& where) {
     double v = 0;
-    if (!number(e, attr, where, &v, true)) return;
-    check_length(e, attr, v, where);
+    if (!number(e, attr, where, &v, true)) return true;
+    return check_length(e, attr, v, where);
   }
 
-  void check_length(const tinyxml2::XMLElement* e, const std::string& what, double v, const std::string& where) {
-    if (!(v > 0.0)) fail(e, where, what + " " + num(v) + " m is not > 0");
+  // A shape's length: <= 0 leaves the shape out (a warning, as Gazebo 11's BoxShape::SetSize and kin), beyond
+  // kLengthMax a warning, beyond kLengthRefuse an error. Returns false once the shape has been warned about as
+  // left out (one warning per shape).
+  bool check_length(const tinyxml2::XMLElement* e, const std::string& what, double v, const std::string& where) {
+    if (v > limits::kLengthRefuse)
+      fail(e, where, what + " " + num(v) + " m is above the limit " + num(limits::kLengthRefuse) +
+                         " m (its square overflows the ray scene's single precision)");
+    if (!(v > 0.0)) {
+      warn(e, "shape-size", where, what + " " + num(v) + " m is not > 0; " + left_out(where));
+      return false;
+    }
     if (v > limits::kLengthMax)
-      fail(e, where, what + " " + num(v) + " m is above the limit " + num(limits::kLengthMax) +
-                         " m (the ray scene works in single precision)");
+      warn(e, "length-range", where, what + " " + num(v) + " m is above " + num(limits::kLengthMax) +
+                                         " m (the ray scene works in single precision)");
+    return true;
+  }
+
+  // What car does with a degenerate shape, by the element's kind.
+  static std::string left_out(const std::string& where) {
+    return where.find("/visual[") != std::string::npos
+               ? "the visual is not drawn"
+               : "the collision is left out of the collision world (the model is simulated)";
   }
 
   void geometry(const tinyxml2::XMLElement* shape_parent, const std::string& where) {
@@ -131,19 +154,25 @@ class UrdfCheck {
       if (kind == "box") {
         std::vector<double> v;
         numbers(s, "size", 3, here, &v, true);
-        for (double x : v) check_length(s, "size", x, here);
+        for (double x : v)
+          if (!check_length(s, "size", x, here)) break;
       } else if (kind == "cylinder") {
-        length(s, "radius", here);
-        length(s, "length", here);
+        if (length(s, "radius", here)) length(s, "length", here);
       } else if (kind == "sphere") {
         length(s, "radius", here);
       } else if (kind == "mesh") {
         std::vector<double> v;
-        if (numbers(s, "scale", 3, here, &v))
-          for (double x : v)
-            if (x == 0.0 || std::abs(x) > limits::kLengthMax)
-              fail(s, here, "scale '" + trim(s->Attribute("scale")) + "' has a component 0 or beyond " +
-                                num(limits::kLengthMax));
+        if (numbers(s, "scale", 3, here, &v)) {
+          double big = 0.0, small = 1.0;
+          for (double x : v) big = std::max(big, std::abs(x)), small = std::min(small, std::abs(x));
+          const std::string scale = "scale '" + trim(s->Attribute("scale")) + "'";
+          if (big > limits::kLengthRefuse)
+            fail(s, here, scale + " has a component beyond " + num(limits::kLengthRefuse));
+          if (small == 0.0)
+            warn(s, "shape-size", here, scale + " has a component 0; " + left_out(here));
+          else if (big > limits::kLengthMax)
+            warn(s, "length-range", here, scale + " has a component beyond " + num(limits::kLengthMax));
+        }
       }
     }
   }
@@ -254,6 +283,9 @@ void check_sdf_numbers(const tinyxml2::XMLElement* root, const std::string& sour
     todo.pop_back();
     for (const tinyxml2::XMLElement* c = e->LastChildElement(); c; c = c->PreviousSiblingElement()) todo.push_back(c);
     if (e->FirstChildElement() || !sdf_numeric_tags().count(e->Name())) continue;
+    // <link><gravity> is SDF's per-link gravity switch, a boolean (sdformat reads it); the world's is a vector
+    const tinyxml2::XMLElement* parent = e->Parent() ? e->Parent()->ToElement() : nullptr;
+    if (std::string(e->Name()) == "gravity" && parent && std::string(parent->Name()) == "link") continue;
     const std::string text = text_of(e);
     const auto toks = split_ws(text);
     for (const auto& t : toks) {
@@ -348,19 +380,42 @@ void check_includes(const tinyxml2::XMLElement* root, const std::string& source,
   throw LoadError(d.source, 0, where, why);
 }
 
-void check_pose(const WorldDescription& d, const Eigen::Isometry3d& T, const std::string& where) {
-  if (!T.matrix().allFinite()) world_fail(d, where, "pose is not finite");
-  if (T.translation().cwiseAbs().maxCoeff() > limits::kLengthMax)
-    world_fail(d, where, "position (" + num(T.translation().x()) + " " + num(T.translation().y()) + " " +
-                             num(T.translation().z()) + ") m is beyond the limit " + num(limits::kLengthMax) + " m");
+void world_warn(WorldDescription* d, const std::string& code, const std::string& where, const std::string& why) {
+  d->diagnostics.push_back({Severity::Warning, code, where, why, 0});
 }
 
-void check_shape(const WorldDescription& d, const Shape& s, const std::string& where) {
+void check_pose(WorldDescription* d, const Eigen::Isometry3d& T, const std::string& where) {
+  if (!T.matrix().allFinite()) world_fail(*d, where, "pose is not finite");
+  const double far = T.translation().cwiseAbs().maxCoeff();
+  const std::string p = "position (" + num(T.translation().x()) + " " + num(T.translation().y()) + " " +
+                        num(T.translation().z()) + ") m";
+  if (far > limits::kLengthRefuse)
+    world_fail(*d, where, p + " is beyond the limit " + num(limits::kLengthRefuse) +
+                              " m (its square overflows the ray scene's single precision)");
+  if (far > limits::kLengthMax)
+    world_warn(d, "length-range", where, p + " is beyond " + num(limits::kLengthMax) +
+                                             " m (the ray scene works in single precision)");
+}
+
+// A world shape: false when it is degenerate (warned about; the caller leaves a collision out).
+bool check_shape(WorldDescription* d, const Shape& s, const std::string& where, bool visual) {
   check_pose(d, s.origin, where + "/pose");
+  bool ok = true;
   auto len = [&](const char* what, double v) {
-    if (!(v > 0.0) || !std::isfinite(v)) world_fail(d, where, std::string(what) + " " + num(v) + " m is not > 0");
-    if (v > limits::kLengthMax)
-      world_fail(d, where, std::string(what) + " " + num(v) + " m is above the limit " + num(limits::kLengthMax) + " m");
+    if (!ok) return;
+    if (!std::isfinite(v) || v > limits::kLengthRefuse)
+      world_fail(*d, where, std::string(what) + " " + num(v) + " m is above the limit " + num(limits::kLengthRefuse) +
+                                " m (its square overflows the ray scene's single precision)");
+    if (!(v > 0.0)) {
+      ok = false;
+      world_warn(d, "shape-size", where,
+                 std::string(what) + " " + num(v) + " m is not > 0; " +
+                     (visual ? "the visual is not drawn"
+                             : "the collision is left out of the collision world (the model is simulated)"));
+    } else if (v > limits::kLengthMax) {
+      world_warn(d, "length-range", where, std::string(what) + " " + num(v) + " m is above " +
+                                               num(limits::kLengthMax) + " m (the ray scene works in single precision)");
+    }
   };
   switch (s.type) {
     case ShapeType::Box:
@@ -374,16 +429,63 @@ void check_shape(const WorldDescription& d, const Shape& s, const std::string& w
       len("radius", s.radius);
       break;
     case ShapeType::Plane:
-      if (!s.normal.allFinite() || s.normal.norm() < 1e-9) world_fail(d, where, "plane normal is zero or not finite");
+      if (!s.normal.allFinite() || s.normal.norm() < 1e-9) world_fail(*d, where, "plane normal is zero or not finite");
       break;
     case ShapeType::Mesh:
-      if (!s.mesh_scale.allFinite() || s.mesh_scale.cwiseAbs().minCoeff() == 0.0)
-        world_fail(d, where, "mesh scale has a component 0 or not finite");
+      if (!s.mesh_scale.allFinite()) world_fail(*d, where, "mesh scale is not finite");
+      if (s.mesh_scale.cwiseAbs().minCoeff() == 0.0) {
+        ok = false;
+        world_warn(d, "shape-size", where,
+                   std::string("mesh scale has a component 0; ") +
+                       (visual ? "the visual is not drawn"
+                               : "the collision is left out of the collision world (the model is simulated)"));
+      }
       break;
   }
+  return ok;
 }
 
 }  // namespace
+
+std::string rewrite_bare_scripts(const std::string& xml, bool* changed) {
+  static const std::string open = "<script>", close = "</script>";
+  *changed = false;
+  std::string out;
+  size_t from = 0;
+  for (size_t at = xml.find(open); at != std::string::npos; at = xml.find(open, from)) {
+    const size_t text = at + open.size();
+    const size_t lt = xml.find('<', text);
+    // only text (no child element, no comment) up to </script>, and some of it not blank
+    if (lt == std::string::npos || xml.compare(lt, close.size(), close) != 0 ||
+        trim(xml.substr(text, lt - text)).empty()) {
+      out.append(xml, from, text - from);
+      from = text;
+      continue;
+    }
+    out.append(xml, from, text - from);
+    out += "<uri>file://media/materials/scripts/gazebo.material</uri><name>" + xml.substr(text, lt - text) + "</name>";
+    from = lt;
+    *changed = true;
+  }
+  out.append(xml, from, std::string::npos);
+  return out;
+}
+
+bool degenerate_shape(const Shape& s) {
+  switch (s.type) {
+    case ShapeType::Box: return !(s.size.minCoeff() > 0.0);
+    case ShapeType::Cylinder: return !(s.radius > 0.0) || !(s.length > 0.0);
+    case ShapeType::Sphere: return !(s.radius > 0.0);
+    case ShapeType::Mesh: return s.mesh_scale.cwiseAbs().minCoeff() == 0.0;
+    case ShapeType::Plane: return false;
+  }
+  return false;
+}
+
+void drop_degenerate_collisions(RobotModel* m) {
+  for (auto& l : m->links)
+    l.collisions.erase(std::remove_if(l.collisions.begin(), l.collisions.end(), degenerate_shape), l.collisions.end());
+}
 
 std::vector<Diagnostic> validate_urdf(const tinyxml2::XMLDocument& doc, const std::string& source) {
   refuse_entities(doc, source);
@@ -426,17 +528,20 @@ void validate_world(WorldDescription* d) {
   if (!(d->real_time_factor >= 0.0) || !std::isfinite(d->real_time_factor))
     world_fail(*d, "world/physics/real_time_factor",
                "real-time factor " + num(d->real_time_factor) + " is not finite and >= 0");
-  for (const auto& m : d->models) {
+  for (auto& m : d->models) {
     const std::string mw = "model[" + m.name + "]";
-    check_pose(*d, m.pose, mw + "/pose");
-    for (const auto& l : m.links) {
+    check_pose(d, m.pose, mw + "/pose");
+    for (auto& l : m.links) {
       const std::string lw = mw + "/link[" + l.name + "]";
-      check_pose(*d, l.pose, lw + "/pose");
-      for (const auto& c : l.collisions) check_shape(*d, c.shape, lw + "/collision[" + c.name + "]");
-      for (const auto& v : l.visuals) check_shape(*d, v.shape, lw + "/visual[" + v.name + "]");
+      check_pose(d, l.pose, lw + "/pose");
+      std::vector<WorldCollision> kept;
+      for (const auto& c : l.collisions)
+        if (check_shape(d, c.shape, lw + "/collision[" + c.name + "]", false)) kept.push_back(c);
+      l.collisions = std::move(kept);
+      for (const auto& v : l.visuals) check_shape(d, v.shape, lw + "/visual[" + v.name + "]", true);
       if (!l.inertial) continue;
       const Inertial& in = *l.inertial;
-      check_pose(*d, in.origin, lw + "/inertial/pose");
+      check_pose(d, in.origin, lw + "/inertial/pose");
       if (!std::isfinite(in.mass)) world_fail(*d, lw + "/inertial/mass", "mass " + num(in.mass) + " kg is not finite");
       if (!in.inertia.allFinite()) world_fail(*d, lw + "/inertial/inertia", "inertia is not finite");
       if (m.is_static) continue;

@@ -19,9 +19,12 @@ namespace limits {
 constexpr double kMassMin = 1e-6, kMassMax = 1e6;
 // [kg m^2] a diagonal inertia entry outside this range is a warning
 constexpr double kInertiaMin = 1e-12, kInertiaMax = 1e6;
-// [m] shape sizes and positions above this are errors: the ray scene works in single precision (a float's step
-// at 1e6 m is 6 cm)
+// [m] shape sizes and positions above this are warnings: the ray scene works in single precision (a float's step
+// at 1e6 m is 6 cm). Gazebo 11 loads them.
 constexpr double kLengthMax = 1e6;
+// [m] above this they are errors: a square of such a length overflows single precision (3.4e38) in the ray scene
+// and the physics' distances (docs/COMPAT-validation.md)
+constexpr double kLengthRefuse = 1e18;
 // includes nested deeper than this are refused (the world tools' flattener has the same limit)
 constexpr int kIncludeDepthMax = 32;
 // models (and <include>s) in one world: libsdformat 12 holds about 2.5 MB and takes about 15 ms per model while it
@@ -34,19 +37,33 @@ namespace detail {
 
 // A URDF document before urdfdom reads it: DTD entity declarations are refused; every number of every link and
 // joint (origins, mass, inertia, geometry, axis, limits, dynamics, calibration, mimic, safety controller) must be
-// finite; sizes > 0; lengths and positions within limits::kLengthMax; damping and friction >= 0. Throws LoadError
-// for the first error in document order; returns the warnings (mass and inertia out of range, negative effort or
-// velocity limits).
+// finite; lengths and positions within limits::kLengthRefuse; damping and friction >= 0. Throws LoadError for the
+// first error in document order; returns the warnings (mass and inertia out of range, negative effort or velocity
+// limits, lengths beyond limits::kLengthMax, shapes with a size <= 0 or a mesh scale component 0, which the loader
+// leaves out: degenerate_shape).
 std::vector<Diagnostic> validate_urdf(const tinyxml2::XMLDocument& doc, const std::string& source);
+
+// A shape with a size <= 0 (box edge, cylinder radius or length, sphere radius) or a mesh scale component 0: Gazebo
+// 11 warns and simulates the model; car leaves such a collision out of the collision world (docs/COMPAT-validation.md).
+bool degenerate_shape(const Shape& s);
+
+// Drops a robot's degenerate collisions (the validator warned about them), before lumping.
+void drop_degenerate_collisions(RobotModel* m);
 
 // SDF text before sdformat reads it: DTD entities refused, every numeric element finite, and every <include>
 // found, acyclic and at most limits::kIncludeDepthMax deep (each included file checked the same way). base_dir:
 // where relative URIs resolve ("" for text). Throws LoadError naming file, line, element and reason.
 void prevalidate_sdf(const std::string& xml, const std::string& source, const std::string& base_dir);
 
+// SDF 1.4 worlds write a material script as bare text, <script>Gazebo/Green</script>; Gazebo 11's sdformat read the
+// text as the script's name, libsdformat 12 refuses it. Returns the text with each such element rewritten as
+// <script><uri>file://media/materials/scripts/gazebo.material</uri><name>Gazebo/Green</name></script> on the same
+// line (line numbers stay); *changed says whether any was (docs/COMPAT-sdf.md).
+std::string rewrite_bare_scripts(const std::string& xml, bool* changed);
+
 // A converted world: step size > 0 and finite, gravity finite, real-time factor finite and >= 0; every model's
 // poses, masses, inertias and shape sizes by the URDF's rules. Throws LoadError for errors; appends warnings to
-// d->diagnostics.
+// d->diagnostics; degenerate collisions are warned about and removed.
 void validate_world(WorldDescription* d);
 
 }  // namespace detail

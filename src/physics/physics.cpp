@@ -696,6 +696,8 @@ void Physics::Impl::add_world_model(const WorldModelDesc& m) {
     ci.m_linearDamping = 0.0;
     ci.m_angularDamping = 0.0;
     auto* rb = new btRigidBody(ci);
+    // SDF <link><gravity>false: Bullet's own per-body switch (the body's gravity stays 0, world changes skip it)
+    if (!l.gravity) rb->setFlags(rb->getFlags() | BT_DISABLE_WORLD_GRAVITY);
     attach(rb, world_surface(kept_collisions));
     // Resting world objects sleep (no work) until something touches them; the robot never sleeps.
     objects.emplace_back(rb);

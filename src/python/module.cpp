@@ -422,12 +422,16 @@ PYBIND11_MODULE(_core, m) {
           err["line"] = e.line();
           out["config_error"] = err;
         }
-        // A mesh that cannot be found or read is the spawn's load error: an error finding here.
+        // A collision mesh that cannot be found or read is the spawn's load error: an error finding here; a
+        // visual's is the spawn's warning (mesh_warnings).
         out["mesh_error"] = py::none();
+        py::list mesh_warnings;
         try {
           RobotModel with_meshes = model;
           const auto slash = source.rfind('/');
           load_meshes(&with_meshes, slash == std::string::npos ? "" : source.substr(0, slash));
+          for (size_t i = model.diagnostics.size(); i < with_meshes.diagnostics.size(); ++i)
+            mesh_warnings.append(diagnostic(with_meshes.diagnostics[i]));
         } catch (const LoadError& e) {
           py::dict err;
           err["severity"] = "error";
@@ -437,6 +441,7 @@ PYBIND11_MODULE(_core, m) {
           err["line"] = e.line();
           out["mesh_error"] = err;
         }
+        out["mesh_warnings"] = mesh_warnings;
         return out;
       },
       py::arg("xml"), py::arg("source") = "<string>", py::arg("lump_fixed_joints") = true,

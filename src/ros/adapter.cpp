@@ -7,4 +7,11 @@ std::string plugin_namespace(const car_sim::PluginConfig& c, const std::string& 
   return car_sim::plugin_robot_namespace(c, model_name);
 }
 
+std::string tf_prefix_param(const std::string& ns) {
+  ros::NodeHandle nh("/" + ns);
+  std::string key, value;
+  if (nh.searchParam("tf_prefix", key)) nh.getParam(key, value);
+  return value;
+}
+
 }  // namespace car_ros

@@ -167,6 +167,11 @@ void SimNode::log_world(const std::string& file) {
     ROS_INFO("car:   model %-16s %s at (%.3f %.3f %.3f)", m.name.c_str(), m.is_static ? "static " : "dynamic",
              m.pose.translation().x(), m.pose.translation().y(), m.pose.translation().z());
   for (const auto& diag : d.diagnostics) ROS_WARN("car: %s: %s", diag.element.c_str(), diag.message.c_str());
+  // the world's robots' own warnings (a shape left out, a visual mesh missing, ...)
+  for (const auto& r : world_->robot_names())
+    for (const auto& diag : world_->robot(r).model.diagnostics)
+      if (diag.severity == car_sim::Severity::Warning)
+        ROS_WARN("car: %s: %s: %s", r.c_str(), diag.element.c_str(), diag.message.c_str());
   ROS_INFO("car: %s, real-time factor %s, solver %d iterations", paused_ ? "paused" : "running",
            rtf_ > 0 ? std::to_string(rtf_).c_str() : "0 (as fast as possible)", solver_iterations_);
 }

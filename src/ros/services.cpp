@@ -138,6 +138,10 @@ bool SimNode::spawn(gazebo_msgs::SpawnModel::Request& req, gazebo_msgs::SpawnMod
     for (const auto& d : world_->robot(req.model_name).config.diagnostics)
       if (d.severity == car_sim::Severity::Warning)
         ROS_WARN("car: %s: %s: %s", req.model_name.c_str(), d.element.c_str(), d.message.c_str());
+    // what the spawn's mesh loading found (a visual's mesh missing: docs/COMPAT-spawn.md)
+    for (const auto& d : world_->robot(req.model_name).model.diagnostics)
+      if (d.code == "visual-mesh-missing")
+        ROS_WARN("car: %s: %s: %s", req.model_name.c_str(), d.element.c_str(), d.message.c_str());
     make_io(req.model_name);
   } catch (const std::exception& e) {
     if (world_->has_model(req.model_name) && !io_.count(req.model_name)) world_->remove(req.model_name);

@@ -137,3 +137,36 @@ TEST(MeshRays, LidarSeesTheMeshCubeAtItsFace) {
     EXPECT_NEAR(s.ranges[i], (1.5 - laser.translation().x()) / std::cos(th), 0.01) << "beam " << i;
   }
 }
+
+// Issue 29 item 3: a visual's mesh missing is a warning naming the element and the file; the robot spawns and its
+// collision (box.stl, 0.1 m tall) carries it at 0.05 m as in DynamicMeshRestsAtItsMeshHeight.
+TEST(MeshMissing, VisualMeshMissingIsAWarningAndTheRobotSpawns) {
+  World w(empty_world());
+  w.spawn(load_urdf_file(data_path("meshes/visual_mesh_missing.urdf")), "bot",
+          at(0, 0, 0) * Eigen::Translation3d(0, 0, 0.2));
+  std::vector<Diagnostic> found;
+  for (const auto& d : w.robot("bot").model.diagnostics)
+    if (d.code == "visual-mesh-missing") found.push_back(d);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].severity, Severity::Warning);
+  EXPECT_EQ(found[0].element, "link[base_link]/visual[body]/mesh");
+  EXPECT_EQ(found[0].message, "mesh 'waffle_base.stl' not found (looked in " + data_path("meshes") +
+                                  "/waffle_base.stl); the visual is not drawn (the model is simulated: physics and "
+                                  "sensors use its collisions)");
+  w.step(2000);
+  EXPECT_NEAR(w.model_state("bot").pose.translation().z(), 0.05, 0.002);
+}
+
+// A collision's mesh missing stays the spawn's load error: file, element and reason.
+TEST(MeshMissing, CollisionMeshMissingIsALoadError) {
+  World w(empty_world());
+  const std::string file = data_path("meshes/collision_mesh_missing.urdf");
+  try {
+    w.spawn(load_urdf_file(file), "bot", at(0, 0, 0));
+    FAIL() << "no error";
+  } catch (const LoadError& e) {
+    EXPECT_EQ(std::string(e.what()), file + ": link[base_link]/collision[0]/mesh: mesh 'waffle_base.stl' not found "
+                                            "(looked in " + data_path("meshes") + "/waffle_base.stl)");
+  }
+  EXPECT_FALSE(w.has_model("bot"));
+}

@@ -48,14 +48,26 @@ TEST(Validate, NanMassIsReportedWithItsValueAndLine) {
             data_path("bad/mass_nan.urdf") + ":7: link[base_link]/inertial/mass: mass 'nan' is not a finite number");
 }
 
-TEST(Validate, NegativeCylinderRadiusIsRefused) {
-  EXPECT_EQ(urdf_error("cylinder_radius_negative.urdf"),
-            data_path("bad/cylinder_radius_negative.urdf") +
-                ":15: link[wheel]/collision[0]/geometry/cylinder: radius -0.1 m is not > 0");
+// Issue 29 item 4: Gazebo 11 warns about a shape size <= 0 and simulates the model (BoxShape::SetSize and kin);
+// car warns and leaves the collision out.
+TEST(Validate, NegativeCylinderRadiusIsAWarningAndTheCollisionIsLeftOut) {
+  const RobotModel m = load_urdf_file(data_path("bad/cylinder_radius_negative.urdf"));
+  const Diagnostic* d = nullptr;
+  for (const auto& x : m.diagnostics)
+    if (x.code == "shape-size") d = &x;
+  ASSERT_NE(d, nullptr);
+  EXPECT_EQ(d->severity, Severity::Warning);
+  EXPECT_EQ(d->line, 15);
+  EXPECT_EQ(d->element, "link[wheel]/collision[0]/geometry/cylinder");
+  EXPECT_EQ(d->message,
+            "radius -0.1 m is not > 0; the collision is left out of the collision world (the model is simulated)");
+  EXPECT_TRUE(m.find_link("wheel")->collisions.empty());
 }
 
-TEST(Validate, ZeroCylinderRadiusIsRefused) {
-  EXPECT_NE(urdf_error("cylinder_radius_zero.urdf").find("radius 0 m is not > 0"), std::string::npos);
+TEST(Validate, ZeroCylinderRadiusIsAWarningAndTheRobotSpawns) {
+  World w(empty_world());
+  w.spawn(load_urdf_file(data_path("bad/cylinder_radius_zero.urdf")), "robot", at(0, 0, 0));
+  EXPECT_TRUE(w.robot("robot").model.find_link("wheel")->collisions.empty());
 }
 
 TEST(Validate, NanInAJointOriginNamesTheJointNotAColour) {
@@ -97,6 +109,31 @@ TEST(Validate, CameraPixelsAboveTheLimitFail) {
             std::string::npos);
 }
 
+// Issue 29 item 5: an SDF world's sensors have the URDF's limits (camera_huge.urdf, lidar_samples_huge.urdf): the
+// same element and reason, the world file's line.
+TEST(Validate, WorldCameraAboveTheSideLimitIsRefusedAsInAUrdf) {
+  try {
+    World w(load_world_file(data_path("bad/camera_huge.world")));
+    FAIL() << "no error";
+  } catch (const LoadError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              data_path("bad/camera_huge.world") +
+                  ":11: sensor[cam]/camera/image/width: camera/image/width 100000 is above the limit 8192 px");
+  }
+}
+
+TEST(Validate, WorldLidarSamplesAboveTheLimitAreRefusedAsInAUrdf) {
+  try {
+    World w(load_world_file(data_path("bad/lidar_samples_huge.world")));
+    FAIL() << "no error";
+  } catch (const LoadError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              data_path("bad/lidar_samples_huge.world") +
+                  ":11: sensor[laser]/ray/scan/horizontal/samples: ray/scan/horizontal/samples 1000000000 is above the "
+                  "limit 100000");
+  }
+}
+
 TEST(Validate, WorldStepSizeZeroIsRefusedWithItsValue) {
   EXPECT_EQ(world_error("step_zero.world"),
             data_path("bad/step_zero.world") + ": world/physics/max_step_size: step size 0 s is not finite and > 0");
@@ -114,9 +151,22 @@ TEST(Validate, WorldGravityNanIsRefused) {
             std::string::npos);
 }
 
-TEST(Validate, WorldNegativeBoxIsRefused) {
-  EXPECT_EQ(world_error("box_negative.world"),
-            data_path("bad/box_negative.world") + ": model[crate]/link[body]/collision[c]: size -1 m is not > 0");
+TEST(Validate, WorldNegativeBoxIsAWarningAndTheCollisionIsLeftOut) {
+  const WorldDescription d = load_world_file(data_path("bad/box_negative.world"));
+  ASSERT_EQ(d.diagnostics.size(), 1u);
+  EXPECT_EQ(d.diagnostics[0].element, "model[crate]/link[body]/collision[c]");
+  EXPECT_EQ(d.diagnostics[0].message,
+            "size -1 m is not > 0; the collision is left out of the collision world (the model is simulated)");
+  ASSERT_NE(d.find_model("crate"), nullptr);
+  EXPECT_TRUE(d.find_model("crate")->links[0].collisions.empty());
+}
+
+// Positions beyond 1e18 m overflow single precision when squared: still refused, with the new limit.
+TEST(Validate, JointOriginBeyondTheFloatLimitIsRefused) {
+  EXPECT_EQ(urdf_error("joint_origin_huge.urdf"),
+            data_path("bad/joint_origin_huge.urdf") +
+                ":19: joint[wheel_joint]/origin: xyz '1e300 0 0' is beyond the limit 1e+18 m (its square overflows "
+                "the ray scene's single precision)");
 }
 
 TEST(Validate, IncludeLoopIsRefusedBeforeSdformatRecursesForever) {

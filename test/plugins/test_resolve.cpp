@@ -145,6 +145,24 @@ TEST(PluginErrors, NonNumericWheelSeparation) {
             "gazebo/plugin[differential_drive_controller]/wheelSeparation: 'wide' is not a number");
 }
 
+// Issue 29 item 4: a negative wheel diameter is what Gazebo 11 loads (the wheels turn the other way): a warning;
+// 0 is refused (the drive divides by it).
+TEST(PluginErrors, NegativeWheelDiameterIsAWarning) {
+  const ModelConfig r = resolve_plugins(
+      load_urdf_string(car_with("<wheelDiameter>0.065</wheelDiameter>", "<wheelDiameter>-0.065</wheelDiameter>"), "car04"));
+  const Diagnostic* d = nullptr;
+  for (const auto& x : r.diagnostics)
+    if (x.code == "wheel-negative") d = &x;
+  ASSERT_NE(d, nullptr);
+  EXPECT_EQ(d->element, "gazebo/plugin[differential_drive_controller]/wheelDiameter");
+  EXPECT_EQ(d->message, "is negative (-0.065 m): the wheels turn the other way, as in Gazebo 11");
+}
+
+TEST(PluginErrors, ZeroWheelDiameterIsRefused) {
+  EXPECT_EQ(config_error(car_with("<wheelDiameter>0.065</wheelDiameter>", "<wheelDiameter>0</wheelDiameter>")),
+            "gazebo/plugin[differential_drive_controller]/wheelDiameter: must not be 0 (the drive divides by it)");
+}
+
 TEST(PluginErrors, ZeroSamples) {
   EXPECT_EQ(config_error(car_with("<samples>360</samples>", "<samples>0</samples>")),
             "sensor[rplidar]/ray/scan/horizontal/samples: samples must be >= 1");

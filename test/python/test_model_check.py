@@ -189,6 +189,19 @@ def test_unresolved_mesh_is_an_error():
     assert model_check.exit_code(r, strict=False) == 2
 
 
+def test_missing_visual_mesh_is_a_warning_naming_the_file():
+    # issue 29 item 3: Gazebo simulates a robot whose visual mesh is missing, so the check warns (exit 0)
+    path = os.path.join(DATA, 'meshes', 'visual_mesh_missing.urdf')
+    with open(path) as f:
+        r = model_check.check_text(f.read(), path)
+    f = finding(r, 'visual-mesh-missing', 'link[base_link]/visual[body]/mesh')
+    assert f['severity'] == 'warning'
+    assert f['message'] == ("mesh 'waffle_base.stl' not found (looked in %s/waffle_base.stl); the visual is not "
+                            "drawn (the model is simulated: physics and sensors use its collisions)"
+                            % os.path.join(DATA, 'meshes'))
+    assert model_check.exit_code(r, strict=False) == 0
+
+
 def test_resolved_zoo_mesh_is_not_reported():
     # cube.obj sits in test/data/zoo/meshes/: the relative URI resolves against the file's folder
     xml = ("<robot name='m'><link name='a'><inertial><mass value='1'/><inertia ixx='1' ixy='0' ixz='0' iyy='1' "
@@ -213,3 +226,15 @@ def test_attribute_form_values_are_read():
            "<kp value='1e7'/></gazebo></robot>")
     r = model_check.check_text(xml, 'values.urdf')
     assert [f for f in r['findings'] if f['severity'] == 'error'] == []
+
+
+def test_huge_mass_is_named_by_the_mass_range_finding_not_a_nan_percentage():
+    # issue 29 item 5: a 1e300 kg link made the inertia comparison print "nan% off"
+    path = os.path.join(DATA, 'bad', 'mass_huge.urdf')
+    with open(path) as f:
+        r = model_check.check_text(f.read(), path)
+    assert [f for f in r['findings'] if f['code'] == 'inertia-mismatch'] == []
+    f = finding(r, 'mass-range', 'link[base_link]/inertial/mass')
+    assert f['message'] == ('mass 1e+300 kg is outside 1e-06..1e+06 kg (a unit mistake? the solver loses accuracy '
+                            'at such masses)')
+    assert 'nan' not in model_check.format_report(r)

@@ -56,6 +56,15 @@ def test_dead_man_window_sends_the_command_then_one_stop(scene):
     assert scene.commands() == []                     # and then nothing
 
 
+def test_missing_visual_mesh_is_drawn_as_a_wireframe_cube(scene):
+    # issue 29 item 3: the robot still shows where its link is; the cube has the placeholder's edge
+    with open(os.path.join(DATA, 'meshes', 'visual_mesh_missing.urdf')) as f:
+        scene.add_robot('r', f.read(), base_dir=os.path.join(DATA, 'meshes'))
+    h = scene.server.scene.get_handle_by_name('/robots/r/base_link/0')
+    assert h.wireframe is True
+    assert tuple(h.dimensions) == (web_view.PLACEHOLDER_SIZE,) * 3
+
+
 def test_replay_poses_the_robot_at_its_recorded_base_pose(tmp_path):
     path = os.path.join(BATCH, 'straight.yaml')
     results = batch.run_all(scenario.load(path)[:1], str(tmp_path), serial=True, progress=False)

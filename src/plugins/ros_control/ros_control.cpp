@@ -102,9 +102,22 @@ bool parse_interface(const std::string& s, Interface* i) {
 
 // Transmissions checked against the model, as gazebo_ros_control's DefaultRobotHWSim: a joint must exist and move;
 // its interface must be one car simulates.
+// gazebo_ros_control's own hardware sim, the only one car has
+const char* const kDefaultSimType = "gazebo_ros_control/DefaultRobotHWSim";
+
 void finish(ResolveContext& ctx) {
   const RobotModel& m = ctx.model();
   if (ctx.config().number("controlPeriod") < 0) ctx.fail("controlPeriod", "must be >= 0");
+  // A robotSimType car lacks (franka_gazebo/FrankaHWSim, PAL's): car's default hardware sim drives the standard
+  // joint interfaces; the others (franka_hw/FrankaStateInterface, ...) are left out. One warning names the type
+  // (docs/COMPAT-control.md).
+  const std::string sim_type = ctx.config().text("robotSimType");
+  const bool foreign = sim_type != kDefaultSimType;
+  if (foreign)
+    ctx.warn(Severity::Warning, "robot-sim-type", "robotSimType",
+             "'" + sim_type + "' is not simulated by car; car's " + kDefaultSimType +
+                 " drives the standard joint interfaces (Position-, Velocity-, EffortJointInterface) the "
+                 "transmissions declare, and leaves the others out");
   for (const auto& t : m.transmissions) {
     const std::string where = "transmission[" + t.name + "]";
     if (t.joints.empty()) throw LoadError(m.source, t.line, where, "has no <joint>");
@@ -118,7 +131,7 @@ void finish(ResolveContext& ctx) {
         throw LoadError(m.source, t.line, at + "/hardwareInterface", "no <hardwareInterface> on the joint or actuator");
       for (const auto& s : j.interfaces) {
         Interface i;
-        if (!parse_interface(s, &i))
+        if (!parse_interface(s, &i) && !foreign)
           throw LoadError(m.source, t.line, at + "/hardwareInterface",
                           "'" + s + "' is not simulated by car (Position-, Velocity- or EffortJointInterface)");
       }
@@ -196,6 +209,7 @@ void RosControl::configure(RobotHandle& robot) {
         if (parse_interface(s, &i)) io.interfaces.push_back(i);
       }
       if (io.index < 0) continue;  // merged away (a joint of a dropped link)
+      if (io.interfaces.empty()) continue;  // only interfaces of a robotSimType car lacks (finish warned)
       auto same = std::find_if(joints_.begin(), joints_.end(), [&](const auto& j) { return j.name == io.name; });
       if (same != joints_.end()) {
         for (auto i : io.interfaces)
@@ -436,7 +450,7 @@ const PluginKind& ros_control_kind() {
     k.schema = {
         {"robotNamespace", T, "", ""},
         {"controlPeriod", N, "0", "s"},
-        {"robotSimType", T, "gazebo_ros_control/DefaultRobotHWSim", ""},
+        {"robotSimType", T, kDefaultSimType, ""},
         {"legacyModeNS", B, "true", ""},
     };
     k.ignored = {{"robotParam", "car reads the robot it spawned, not robot_description"},

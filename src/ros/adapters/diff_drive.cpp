@@ -23,8 +23,10 @@ class DiffDriveAdapter : public Adapter {
     robot_ = robot.name;
     model_ = &robot.model;
     drive_ = dynamic_cast<car_sim::TwistDrive*>(node.world().plugin(robot.name, p.config.name));
-    odom_frame_ = frame(cfg_.odometry_frame);
-    base_frame_ = frame(cfg_.robot_base_frame);
+    // GazeboRos::resolveTF: tf_prefix from the plug-in's namespace (docs/COMPAT-spawn.md rule 4)
+    prefix_ = tf_prefix_param(plugin_namespace(p.config, robot.name));
+    odom_frame_ = resolve_tf(prefix_, cfg_.odometry_frame);
+    base_frame_ = resolve_tf(prefix_, cfg_.robot_base_frame);
     const std::string cmd = topic_in(cfg_.robot_namespace, cfg_.command_topic);
     const std::string odom = topic_in(cfg_.robot_namespace, cfg_.odometry_topic);
     cmd_vel_ = node.nh().subscribe<geometry_msgs::Twist>(
@@ -88,8 +90,8 @@ class DiffDriveAdapter : public Adapter {
         const car_sim::Joint* joint = model_->find_joint(j.name);
         geometry_msgs::TransformStamped t;
         t.header.stamp = stamp;
-        t.header.frame_id = joint->parent;
-        t.child_frame_id = joint->child;
+        t.header.frame_id = resolve_tf(prefix_, joint->parent);
+        t.child_frame_id = resolve_tf(prefix_, joint->child);
         Eigen::Isometry3d T = joint->origin;
         T.rotate(Eigen::AngleAxisd(j.position, joint->axis));
         t.transform = to_transform(T);
@@ -132,6 +134,7 @@ class DiffDriveAdapter : public Adapter {
   car_sim::DiffDriveConfig cfg_;
   std::string robot_;
   std::string odom_frame_, base_frame_;  // the odometry's frame_id and child_frame_id, as published
+  std::string prefix_;                   // tf_prefix ("" = none)
   const car_sim::RobotModel* model_ = nullptr;
   car_sim::TwistDrive* drive_ = nullptr;
   ros::Subscriber cmd_vel_;

@@ -20,8 +20,10 @@ class PlanarMoveAdapter : public Adapter {
     robot_ = robot.name;
     drive_ = dynamic_cast<car_sim::TwistDrive*>(node.world().plugin(robot.name, p.config.name));
     const std::string ns = plugin_namespace(p.config, robot.name);
-    odom_frame_ = frame(p.config.text("odometryFrame"));
-    base_frame_ = frame(p.config.text("robotBaseFrame"));
+    // tf::resolve(tf::getPrefixParam) as upstream: tf_prefix from the plug-in's namespace (docs/COMPAT-spawn.md 4)
+    prefix_ = tf_prefix_param(ns);
+    odom_frame_ = resolve_tf(prefix_, p.config.text("odometryFrame"));
+    base_frame_ = resolve_tf(prefix_, p.config.text("robotBaseFrame"));
     const std::string cmd = topic_in(ns, p.config.text("commandTopic"));
     const std::string odom = topic_in(ns, p.config.text("odometryTopic"));
     cmd_vel_ = node.nh().subscribe<geometry_msgs::Twist>(
@@ -67,6 +69,7 @@ class PlanarMoveAdapter : public Adapter {
   }
 
   std::string robot_, odom_frame_, base_frame_;
+  std::string prefix_;  // tf_prefix ("" = none)
   car_sim::TwistDrive* drive_ = nullptr;
   ros::Subscriber cmd_vel_;
   ros::Publisher odom_;

@@ -22,8 +22,10 @@ class TricycleAdapter : public Adapter {
     model_ = &robot.model;
     name_ = p.config.name;
     const std::string ns = plugin_namespace(p.config, robot.name);
-    odom_frame_ = frame(p.config.text("odometryFrame"));
-    base_frame_ = frame(p.config.text("robotBaseFrame"));
+    // tf::resolve(tf::getPrefixParam) as upstream: tf_prefix from the plug-in's namespace (docs/COMPAT-spawn.md 4)
+    prefix_ = tf_prefix_param(ns);
+    odom_frame_ = resolve_tf(prefix_, p.config.text("odometryFrame"));
+    base_frame_ = resolve_tf(prefix_, p.config.text("robotBaseFrame"));
     wheel_tf_ = p.config.flag("publishWheelTF");
     const std::string cmd = topic_in(ns, p.config.text("commandTopic"));
     const std::string odom = topic_in(ns, p.config.text("odometryTopic"));
@@ -77,8 +79,8 @@ class TricycleAdapter : public Adapter {
         const car_sim::Joint* joint = model_->find_joint(j.name);
         geometry_msgs::TransformStamped w;
         w.header.stamp = stamp;
-        w.header.frame_id = joint->parent;
-        w.child_frame_id = joint->child;
+        w.header.frame_id = resolve_tf(prefix_, joint->parent);
+        w.child_frame_id = resolve_tf(prefix_, joint->child);
         Eigen::Isometry3d T = joint->origin;
         T.rotate(Eigen::AngleAxisd(j.position, joint->axis));
         w.transform = to_transform(T);
@@ -91,6 +93,7 @@ class TricycleAdapter : public Adapter {
   car_sim::TwistDrive* drive_ = nullptr;
   const car_sim::RobotModel* model_ = nullptr;
   std::string name_, odom_frame_, base_frame_;
+  std::string prefix_;  // tf_prefix ("" = none)
   bool wheel_tf_ = false;
   ros::Subscriber cmd_vel_;
   ros::Publisher odom_, joint_states_;

@@ -148,3 +148,28 @@ TEST(RosControl, StrictSwitchRefusesAConflictAndAnUnknownController) {
   EXPECT_TRUE(rc.switch_controllers({"zz", "a"}, {}, false, &why));  // best effort: starts a
   EXPECT_TRUE(rc.loaded()[0].running);
 }
+
+// Issue 29 item 5: a robotSimType car lacks loads car's default hardware sim with one warning naming the type; the
+// franka_hw state interface is left out and the standard ones drive the arm (the elbow's position controller holds
+// it straight, as in EffortPidHoldsAgainstGravityWithErrorMglOverP).
+TEST(RosControl, ForeignRobotSimTypeWarnsOnceAndRunsTheStandardInterfaces) {
+  auto w = world_with("arm_foreign_sim.urdf", "arm");
+  std::vector<Diagnostic> found;
+  for (const auto& d : w->robot("arm").config.diagnostics)
+    if (d.code == "robot-sim-type") found.push_back(d);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].severity, Severity::Warning);
+  EXPECT_EQ(found[0].element, "gazebo/plugin[gazebo_ros_control]/robotSimType");
+  EXPECT_EQ(found[0].message,
+            "'franka_gazebo/FrankaHWSim' is not simulated by car; car's gazebo_ros_control/DefaultRobotHWSim drives "
+            "the standard joint interfaces (Position-, Velocity-, EffortJointInterface) the transmissions declare, "
+            "and leaves the others out");
+  RosControl& rc = manager(*w, "arm");
+  rc.load("shoulder_ctl", "effort_controllers/JointPositionController",
+          Params{{"joint", {"shoulder"}}, {"pid/p", {"1000"}}, {"pid/d", {"50"}}});
+  rc.load("elbow_ctl", "position_controllers/JointPositionController", Params{{"joint", {"elbow"}}});
+  start(rc, {"shoulder_ctl", "elbow_ctl"});
+  w->step(5000);
+  EXPECT_NEAR(joint(*w, "arm", "shoulder"), 2 * 1.0 * kG * 1.0 / 1000, 5e-4);
+  EXPECT_NEAR(joint(*w, "arm", "elbow"), 0.0, 1e-3);
+}
