@@ -129,6 +129,7 @@ def pytest_runtest_makereport(item, call):
     if s is None or rep.when != 'call' or not rep.failed:
         return
     from car.testing import artifacts
+    props = []
     lines = ['seed: %d (replay: pytest --car-seed %d %s)' % (s.seed, s.seed, item.nodeid)]
     out = artifacts.artifact_dir(item.config)
     os.makedirs(out, exist_ok=True)
@@ -137,17 +138,20 @@ def pytest_runtest_makereport(item, call):
         traj = s.trajectories.snapshot()
         n = artifacts.write_plot(stem + '.png', s.world, traj, title='%s  (seed %d)' % (item.nodeid, s.seed))
         lines.append('plot: %s (%d models)' % (stem + '.png', n))
-        rep.user_properties.append(('car_plot', stem + '.png'))
+        props.append(('car_plot', stem + '.png'))
     except Exception as e:  # the report must not hide the test's own failure
         lines.append('plot: not written: %s: %s' % (type(e).__name__, e))
     try:
         n = artifacts.write_bag(stem + '.bag', s.recordings)
         lines.append('bag: %s (%d messages of %s)' % (
             stem + '.bag', n, ', '.join(t for rec in s.recordings for t in rec.topics) or 'no recorded topic'))
-        rep.user_properties.append(('car_bag', stem + '.bag'))
+        props.append(('car_bag', stem + '.bag'))
     except Exception as e:
         lines.append('bag: not written: %s: %s' % (type(e).__name__, e))
     if s.sim_proc.poll() is not None:
         lines.append('sim_node exited (%s); its log ends:\n%s' % (s.sim_proc.returncode, s.log_tail()))
-    rep.user_properties.append(('car_seed', str(s.seed)))
+    props.append(('car_seed', str(s.seed)))
+    # junitxml writes the teardown report's properties, which come from the item's
+    rep.user_properties.extend(props)
+    item.user_properties.extend(props)
     rep.sections.append(('car.testing', '\n'.join(lines)))

@@ -247,6 +247,7 @@ class Sim:
         self.log_dir = log_dir or tempfile.mkdtemp(prefix='car-testing-')
         self._procs = []
         self._spawned = []
+        self._publishers = {}
         self.recordings = []
         self.master_uri = ensure_master(use_existing_master, hang_s)
         ensure_node()
@@ -399,6 +400,25 @@ class Sim:
         self.call(DeleteModel, name)
         if name in self._spawned:
             self._spawned.remove(name)
+
+    def publish(self, topic, msg, hang_s=None):
+        """Publishes msg on topic from a latched publisher once the subscribers are connected (waiting in wall
+        time, with the simulation paused, so no sim time passes), synchronously (queue_size None: publish()
+        returns once the message is in each subscriber's socket). A command published between two waits thus
+        holds from the next wait's first step. Returns the publisher (publish on it again for a new command)."""
+        import rospy
+        pub = self._publishers.get(topic)
+        if pub is None:
+            pub = rospy.Publisher(topic, type(msg), queue_size=None, latch=True)
+            self._publishers[topic] = pub
+        deadline = time.monotonic() + (hang_s or self.hang_s)
+        while pub.get_num_connections() == 0:
+            if time.monotonic() > deadline:
+                raise AssertionError('publish: nobody subscribes to %s (waited %.0f s of wall time, paused)'
+                                     % (topic, hang_s or self.hang_s))
+            time.sleep(0.01)
+        pub.publish(msg)
+        return pub
 
     # ---- recording ------------------------------------------------------------------------------------------
     def record(self, topics):

@@ -171,50 +171,61 @@ class Pacer:
             self.set(self.rtf0)
 
 
-def run_for(clock, seconds, seed=None, hang_s=60.0, lead_wall_s=0.1):
-    """Runs the simulation (unpaused, then paused) until its time has moved on by `seconds` from now; returns the
-    sim time [s] it paused at (at or a little after the target).
-
-    A pause request takes some wall milliseconds to act, and a simulator at rtf 0 can run hundreds of sim seconds
-    per wall second, so the run slows down as it nears the target: the real-time factor is set so that what is
-    left takes about lead_wall_s of wall time (never above the run's own factor), which bounds the overshoot to a
-    few steps. The physics does not depend on pacing: the same steps happen either way."""
-    t0 = sim_now()
-    clock.advance_to(t0)
-    target = t0 + seconds
+def _run_paced(clock, t0, deadline, predicate, what, seed, hang_s, lead_wall_s, poll_s=0.002):
+    """Unpauses, polls predicate() until it is truthy (returns its value) or sim time reaches deadline (returns
+    None), and pauses. A pause request takes some wall milliseconds to act, and a simulator at rtf 0 can run
+    hundreds of sim seconds per wall second, so the run is paced as it nears the deadline: the real-time factor
+    is set so that what is left takes about lead_wall_s of wall time (never above the run's own factor). That
+    bounds the overshoot to a few steps, and lets a predicate be looked at often enough. The physics does not
+    depend on pacing: the same steps happen either way."""
     pacer = Pacer()
     fast = pacer.rtf0 if pacer.rtf0 > 0 else float('inf')
     last_t, last_move = t0, time.monotonic()
+    # paced from the first step: a factor set after unpausing would come while the simulator runs freely
+    if (deadline - t0) / lead_wall_s < fast:
+        pacer.set(max((deadline - t0) / lead_wall_s, 0.05))
     unpause()
     try:
         while True:
+            value = predicate()
+            if value:
+                return value
             now = sim_now()
-            left = target - now
+            clock.advance_to(now)
+            left = deadline - now
             if left <= 0:
-                break
+                return None
             want = min(fast, max(left / lead_wall_s, 0.05))
             # change the factor only when it is far off (each change costs a service call)
-            if want < pacer.rtf * 0.5 or (pacer.rtf == 0 and want != float('inf')) or (
-                    want > pacer.rtf * 2 and pacer.rtf != 0):
-                pacer.set(0.0 if want == float('inf') else want)
+            if want < pacer.rtf * 0.5 or (pacer.rtf == 0 and want != float('inf')):
+                pacer.set(want)
             if now != last_t:
                 last_t, last_move = now, time.monotonic()
             elif time.monotonic() - last_move > hang_s:
-                raise AssertionError('run_for(%g): sim time stood still at %.3f s for %.0f s of wall time%s'
-                                     % (seconds, now, hang_s, _seed_text(seed)))
-            time.sleep(0.002)
+                raise AssertionError('%s: sim time stood still at %.3f s for %.0f s of wall time (did the simulator '
+                                     'die or get paused?)%s' % (what, now, hang_s, _seed_text(seed)))
+            time.sleep(poll_s)
     finally:
         pause()
         pacer.restore()
+
+
+def run_for(clock, seconds, seed=None, hang_s=60.0, lead_wall_s=0.1):
+    """Runs the simulation (unpaused, then paused) until its time has moved on by `seconds` from now; returns the
+    sim time [s] it paused at (at or a few steps after the target; see _run_paced)."""
+    t0 = sim_now()
+    clock.advance_to(t0)
+    _run_paced(clock, t0, t0 + seconds, lambda: False, 'run_for(%g)' % seconds, seed, hang_s, lead_wall_s)
     t = sim_now()
     clock.advance_to(t)
     return t
 
 
-def wait_sim(clock, predicate, timeout, what, seed=None, run=True, hang_s=60.0, poll_s=0.002):
-    """Lets the simulation run (run=True: unpause, and pause again before returning) until predicate() is truthy
-    or `timeout` sim seconds have passed since the call. Returns predicate's value; on timeout raises
-    AssertionError naming `what`, the sim times and the seed. A predicate that is already true returns at once.
+def wait_sim(clock, predicate, timeout, what, seed=None, run=True, hang_s=60.0, lead_wall_s=0.1):
+    """Lets the simulation run (run=True: unpause, and pause again before returning; run=False: someone else runs
+    it, as in a rostest) until predicate() is truthy or `timeout` sim seconds have passed since the call. Returns
+    predicate's value; on timeout raises AssertionError naming `what`, the sim times and the seed. A predicate
+    that is already true returns at once.
 
     hang_s: wall seconds sim time may stand still before the wait fails as a hang (the simulator died or is
     paused by someone else)."""
@@ -225,8 +236,10 @@ def wait_sim(clock, predicate, timeout, what, seed=None, run=True, hang_s=60.0, 
     if value:
         return value
     if run:
-        unpause()
-    try:
+        value = _run_paced(clock, t0, deadline, predicate, what, seed, hang_s, lead_wall_s)
+        if value:
+            return value
+    else:
         last_t, last_move = clock.now(), time.monotonic()
         while True:
             value = predicate()
@@ -238,18 +251,15 @@ def wait_sim(clock, predicate, timeout, what, seed=None, run=True, hang_s=60.0, 
             if t != last_t:
                 last_t, last_move = t, time.monotonic()
             elif time.monotonic() - last_move > hang_s:
-                raise AssertionError('%s: sim time stood still at %.3f s for %.0f s of wall time (did the simulator '
-                                     'die or get paused?)%s' % (what, t, hang_s, _seed_text(seed)))
-            time.sleep(poll_s)
-    finally:
-        if run:
-            pause()
+                raise AssertionError('%s: sim time stood still at %.3f s for %.0f s of wall time (is the simulator '
+                                     'paused?)%s' % (what, t, hang_s, _seed_text(seed)))
+            time.sleep(0.005)
     # the last messages of the span may have arrived after the clock passed the deadline
     value = predicate()
     if value:
         return value
     raise AssertionError('timed out after %.3f sim s (sim time %.3f -> %.3f) waiting for: %s%s'
-                         % (timeout, t0, clock.now(), what, _seed_text(seed)))
+                         % (timeout, t0, sim_now(), what, _seed_text(seed)))
 
 
 def _seed_text(seed):
