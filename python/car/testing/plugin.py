@@ -32,7 +32,7 @@ def pytest_addoption(parser):
 def pytest_configure(config):
     config.addinivalue_line(
         'markers', 'car_sim(world=None, robot=None, name="robot", pose=(x, y, yaw), launch=None, launch_args=None, '
-                   'rtf=None): the simulator of this module (or test, with --car-scope function); relative paths '
+                   'nodes=[argv, ...], rtf=None): the simulator of this module (or test, with --car-scope function); relative paths '
                    'are taken from the test file\'s folder')
     raw = config.getoption('car_seed') or config.getini('car_seed') or '0'
     if str(raw).lower() == 'random':

@@ -236,12 +236,13 @@ class Sim:
 
     world: a .world file (None: car's empty world). robot: a URDF, xacro or SDF file (or XML), spawned as
     `name` at `pose` (x, y, yaw). launch: a launch file started after the robot is spawned (the user's nodes),
-    with launch_args {name: value}. rtf: real-time factor (0 = as fast as possible). seed: the noise seed."""
+    with launch_args {name: value}. nodes: command lines (lists) of more processes to start (the user's nodes). rtf: real-time factor (0 = as fast as possible). seed: the noise seed."""
 
     def __init__(self, world=None, robot=None, name='robot', pose=(0.0, 0.0, 0.0), launch=None, launch_args=None,
-                 rtf=0.0, seed=0, use_existing_master=False, log_dir=None, hang_s=60.0, trajectory_rate=20.0):
+                 rtf=0.0, seed=0, use_existing_master=False, log_dir=None, hang_s=60.0, trajectory_rate=20.0, nodes=()):
         self.world, self.robot, self.name, self.start_pose = world, robot, name, tuple(pose)
         self.launch, self.launch_args = launch, dict(launch_args or {})
+        self.nodes = [list(n) for n in nodes]
         self.rtf, self.seed, self.hang_s = float(rtf), int(seed), hang_s
         self.trajectory_rate = float(trajectory_rate)
         self.log_dir = log_dir or tempfile.mkdtemp(prefix='car-testing-')
@@ -296,6 +297,8 @@ class Sim:
         if self.launch:
             self._popen(['roslaunch', self.launch] + ['%s:=%s' % kv for kv in self.launch_args.items()],
                         'launch.log')
+        for i, argv in enumerate(self.nodes):
+            self._popen(argv, 'node%d.log' % i)
         self.call(GetWorldProperties)
 
     @staticmethod
