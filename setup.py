@@ -1,4 +1,7 @@
 from setuptools import setup
 from catkin_pkg.python_setup import generate_distutils_setup
 
-setup(**generate_distutils_setup(packages=['car'], package_dir={'': 'python'}))
+# car.testing is a pytest plug-in: an install (setup.py install / pip) announces it to pytest through the pytest11
+# entry point. catkin's devel space makes no entry points; CMakeLists.txt writes the same one there.
+setup(**generate_distutils_setup(packages=['car', 'car.testing'], package_dir={'': 'python'},
+                                 entry_points={'pytest11': ['car.testing = car.testing']}))

@@ -1,0 +1,54 @@
+"""The wall follower's own tests, as a user writes them with car.testing (docs/TESTING.md).
+
+One simulator for the module: box_house, the tutorial car, and wall_follower.py as the node under test; each test
+starts from a reset (sim time 0, the car back at its spawn pose) and may move the car first. Every wait counts
+sim seconds, so a busy machine makes a test slower, never red.
+"""
+import math
+import os
+import sys
+
+import pytest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+
+# rtf 10: the node is a separate process; at rtf 10 its reaction (milliseconds of wall time) is a few steps of
+# sim time, as on the robot. rtf 0 would outrun it.
+pytestmark = pytest.mark.car_sim(world=os.path.join(ROOT, 'worlds', 'box_house.world'),
+                                 robot=os.path.join(ROOT, 'urdf', 'car_camera_lidar04.xacro'), name='car',
+                                 nodes=[[sys.executable, os.path.join(HERE, 'wall_follower.py')]], rtf=10)
+
+# the car's footprint half-diagonal is about 0.25 m: a scan range below this is a touch [m]
+TOUCH = 0.25
+
+
+def test_reaches_the_right_wall_and_follows_it(sim):
+    # from (0, 0) facing +x the nearest wall on the right is the house's south wall (inner face y = -3.79 m);
+    # following it at 0.8 m puts the car near y = -3.0 m, still driving
+    sim.until(lambda: sim.pose('car').y < -2.6, timeout=30.0, what='car within 1.2 m of the south wall')
+    x0 = sim.pose('car').x
+    sim.run_for(5.0)
+    p = sim.pose('car')
+    assert -3.5 < p.y < -2.2, p
+    assert abs(p.x - x0) > 0.5, 'stopped at x = %.2f' % p.x
+
+
+def test_never_touches_a_wall(sim):
+    rec = sim.record({'/scan': 'sensor_msgs/LaserScan'})
+    sim.run_for(40.0)
+    scans = rec['/scan']
+    assert len(scans) >= 200  # 5.5 Hz over 40 s
+    nearest = min(min(r for r in s.ranges if r >= s.range_min) for s in scans)
+    assert nearest > TOUCH, 'came within %.3f m of a wall' % nearest
+
+
+@pytest.mark.parametrize('x, y, yaw', [(0.0, 0.0, 0.0), (-2.0, 1.5, 1.57), (2.5, -1.0, 3.14), (-3.0, -1.0, 0.0)])
+def test_start_pose_sweep_keeps_clear_and_moves(sim, x, y, yaw):
+    sim.set_pose('car', x, y, yaw=yaw)
+    rec = sim.record({'/scan': 'sensor_msgs/LaserScan'})
+    sim.run_for(20.0)
+    p = sim.pose('car')
+    assert math.hypot(p.x - x, p.y - y) > 1.0, 'did not move from (%.1f, %.1f)' % (x, y)
+    nearest = min(min(r for r in s.ranges if r >= s.range_min) for s in rec['/scan'])
+    assert nearest > TOUCH, 'came within %.3f m of a wall' % nearest
