@@ -336,7 +336,8 @@ void SurfaceSolver::convert(btPersistentManifold* m, const btContactSolverInfo& 
     cp.m_lateralFrictionDir1 = d1;
     cp.m_lateralFrictionDir2 = d2;
     // each row limited by its own coefficient times the normal impulse (ODE's friction pyramid); with one
-    // coefficient for both directions, the pair is limited together to the circle mu N (docs: "Skid steering")
+    // coefficient for both directions, the pair is solved together by Coulomb's isotropic law (docs: "Skid
+    // steering")
     circle_.resize(m_multiBodyFrictionContactConstraints.size(), 0);
     circle_.push_back(p.mu1 == p.mu2 ? 1 : 0);
     circle_.push_back(0);
@@ -430,6 +431,27 @@ void SurfaceSolver::solve_push(const btContactSolverInfo& info) {
       mb->applyDeltaSplitVeeMultiDof(&push_dv_[index], btScalar(1));
     }
   }
+}
+
+// The unbounded impulse change [N s] a row asks for now (resolve's first part; nothing applied).
+btScalar SurfaceSolver::wanted(const btMultiBodySolverConstraint& c) {
+  btScalar delta = c.m_rhs - btScalar(c.m_appliedImpulse) * c.m_cfm;
+  const btScalar* jac = &m_data.m_jacobians[0];
+  const btScalar* dv = &m_data.m_deltaVelocities[0];
+  btScalar dva = 0, dvb = 0;
+  if (c.m_multiBodyA) dva = add_dot(dva, jac + c.m_jacAindex, dv + c.m_deltaVelAindex, c.m_multiBodyA->getNumDofs() + 6);
+  else if (c.m_solverBodyIdA >= 0) {
+    btSolverBody& b = m_tmpSolverBodyPool[c.m_solverBodyIdA];
+    dva += c.m_contactNormal1.dot(b.internalGetDeltaLinearVelocity()) + c.m_relpos1CrossNormal.dot(b.internalGetDeltaAngularVelocity());
+  }
+  if (c.m_multiBodyB) dvb = add_dot(dvb, jac + c.m_jacBindex, dv + c.m_deltaVelBindex, c.m_multiBodyB->getNumDofs() + 6);
+  else if (c.m_solverBodyIdB >= 0) {
+    btSolverBody& b = m_tmpSolverBodyPool[c.m_solverBodyIdB];
+    dvb += c.m_contactNormal2.dot(b.internalGetDeltaLinearVelocity()) + c.m_relpos2CrossNormal.dot(b.internalGetDeltaAngularVelocity());
+  }
+  delta -= dva * c.m_jacDiagABInv;
+  delta -= dvb * c.m_jacDiagABInv;
+  return delta;
 }
 
 // Adds an impulse change to a row's bodies (resolve's last part).
@@ -570,26 +592,34 @@ btScalar SurfaceSolver::solveSingleIteration(int iteration, btCollisionObject** 
     if (normal > btScalar(0)) {
       c.m_lowerLimit = -(c.m_friction * normal);
       c.m_upperLimit = c.m_friction * normal;
-      const btScalar r = resolve(c);
-      residual = btMax(residual, r * r);
       if (c.m_multiBodyA) c.m_multiBodyA->setPosUpdated(false);
       if (c.m_multiBodyB) c.m_multiBodyB->setPosUpdated(false);
-      if (j < static_cast<int>(circle_.size()) && circle_[j]) {
-        // the pair's second row, then both scaled back onto the circle mu N
-        btMultiBodySolverConstraint& c2 = m_multiBodyFrictionContactConstraints[++j];
-        c2.m_lowerLimit = -(c2.m_friction * normal);
-        c2.m_upperLimit = c2.m_friction * normal;
-        const btScalar r2 = resolve(c2);
-        residual = btMax(residual, r2 * r2);
-        const btScalar limit = c.m_friction * normal;
-        const btScalar f1 = c.m_appliedImpulse, f2 = c2.m_appliedImpulse;
-        const btScalar f = btSqrt(f1 * f1 + f2 * f2);
-        if (f > limit) {
-          const btScalar k = limit / f;
-          nudge(c, f1 * k - f1);
-          nudge(c2, f2 * k - f2);
-        }
+      if (j >= static_cast<int>(circle_.size()) || !circle_[j]) {
+        const btScalar r = resolve(c);
+        residual = btMax(residual, r * r);
+        continue;
       }
+      // Coulomb's law for the pair (docs: "Skid steering"): both rows' unbounded changes together; inside the
+      // circle mu N the contact sticks, outside it slides with the force mu N against its slip velocity (the
+      // rows' velocity errors [m/s] along their unit directions)
+      btMultiBodySolverConstraint& c2 = m_multiBodyFrictionContactConstraints[++j];
+      const btScalar d1 = wanted(c), d2 = wanted(c2);
+      const btScalar limit = c.m_friction * normal;
+      btScalar n1 = c.m_appliedImpulse + d1, n2 = c2.m_appliedImpulse + d2;
+      if (n1 * n1 + n2 * n2 > limit * limit) {
+        const btScalar e1 = d1 / c.m_jacDiagABInv, e2 = d2 / c2.m_jacDiagABInv;
+        const btScalar e = btSqrt(e1 * e1 + e2 * e2);
+        const btScalar t = btSqrt(n1 * n1 + n2 * n2);
+        // no slip to follow: scaled back onto the circle
+        n1 = limit * (e > 0 ? e1 / e : n1 / t);
+        n2 = limit * (e > 0 ? e2 / e : n2 / t);
+      }
+      const btScalar a1 = n1 - c.m_appliedImpulse, a2 = n2 - c2.m_appliedImpulse;
+      nudge(c, a1);
+      nudge(c2, a2);
+      // Bullet's residual term: the rows' velocity change squared
+      residual = btMax(residual, btMax(a1 * a1 / (c.m_jacDiagABInv * c.m_jacDiagABInv),
+                                       a2 * a2 / (c2.m_jacDiagABInv * c2.m_jacDiagABInv)));
     } else if (j < static_cast<int>(circle_.size()) && circle_[j]) {
       ++j;
     }

@@ -116,6 +116,8 @@ class SurfaceSolver : public btMultiBodyConstraintSolver {
   btScalar resolve(const btMultiBodySolverConstraint& c);
   // Adds delta to a row's impulse and its bodies' velocity changes.
   void nudge(btMultiBodySolverConstraint& c, btScalar delta);
+  // The unbounded impulse change [N s] a row asks for now (nothing applied).
+  btScalar wanted(const btMultiBodySolverConstraint& c);
   // ODE's split correction: the capped part of each normal row's correction, solved on its own and given to the
   // multibodies as split velocities (positions only).
   void solve_push(const btContactSolverInfo& info);
@@ -157,7 +159,7 @@ class SurfaceSolver : public btMultiBodyConstraintSolver {
   };
   std::vector<PushRow> push_;
   std::vector<btScalar> push_dv_;  // split velocity changes, laid out as m_data.m_deltaVelocities
-  std::vector<char> circle_;       // per friction row: first of a pair limited to the circle mu N
+  std::vector<char> circle_;       // per friction row: first of a pair solved by Coulomb's isotropic law
 };
 
 }  // namespace physics

@@ -48,6 +48,7 @@ std::unique_ptr<World> spawned(const Skid& s, double z) {
   Eigen::Isometry3d pose = at(0, 0, 0);
   pose.translation().z() = z;
   w->spawn(load_urdf_file(data_path(s.file)), s.name, pose);
+  if (const char* it = std::getenv("CAR_ITERS")) w->set_solver_iterations(std::atoi(it));
   return w;
 }
 
@@ -78,22 +79,31 @@ double yaw(const ModelState& s) {
 
 }  // namespace
 
+// Yaw turned [rad] while driving (v, w) for `seconds`, summed over 0.1 s chunks (no wrap-around).
+double turned(World& w, control::DiffDriveController& dd, const char* name, double v, double omega, double seconds) {
+  double total = 0, last = yaw(w.model_state(name));
+  const int chunks = static_cast<int>(std::lround(seconds / 0.1));
+  for (int i = 0; i < chunks; ++i) {
+    drive_for(w, dd, v, omega, 0.1);
+    const double y = yaw(w.model_state(name));
+    total += std::remainder(y - last, 2 * M_PI);
+    last = y;
+  }
+  return total;
+}
+
 TEST(SkidSteer, Measure) {
   for (const Skid& s : {kHusky, kJackal}) {
     auto w = spawned(s, 0.3);
     w->step(1000);
     auto& dd = drive(*w, s);
     drive_for(*w, dd, 0.5, 0.5, 2.0);
-    const ModelState a = w->model_state(s.name);
-    drive_for(*w, dd, 0.5, 0.5, 4.0);
+    const Eigen::Vector3d p0 = w->model_state(s.name).pose.translation();
+    const double W = turned(*w, dd, s.name, 0.5, 0.5, 6.0) / 6.0;
     const ModelState b = w->model_state(s.name);
-    double dyaw = yaw(b) - yaw(a);
-    while (dyaw < -M_PI) dyaw += 2 * M_PI;
-    while (dyaw > M_PI) dyaw -= 2 * M_PI;
-    const double W = dyaw / 4.0;
     const double V = b.linear.head<2>().norm();
-    std::printf("%s: z %.4f V %.4f W %.4f R %.3f (expected W %.4f)\n", s.name, b.pose.translation().z(), V, W, V / W,
-                expected_yaw_rate(s, 0.5));
+    std::printf("%s: z %.4f V %.4f W %.4f R %.3f (expected W %.4f) moved %.3f\n", s.name, b.pose.translation().z(), V, W,
+                V / W, expected_yaw_rate(s, 0.5), (b.pose.translation() - p0).head<2>().norm());
     auto w2 = spawned(s, 0.3);
     w2->step(1000);
     auto& dd2 = drive(*w2, s);
