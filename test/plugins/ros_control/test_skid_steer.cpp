@@ -48,7 +48,6 @@ std::unique_ptr<World> spawned(const Skid& s, double z) {
   Eigen::Isometry3d pose = at(0, 0, 0);
   pose.translation().z() = z;
   w->spawn(load_urdf_file(data_path(s.file)), s.name, pose);
-  if (const char* it = std::getenv("CAR_ITERS")) w->set_solver_iterations(std::atoi(it));
   return w;
 }
 
