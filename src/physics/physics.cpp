@@ -4,6 +4,7 @@
 #include "physics.hpp"
 
 #include <btBulletDynamicsCommon.h>
+#include <BulletCollision/CollisionDispatch/btConvexPlaneCollisionAlgorithm.h>
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
@@ -116,11 +117,37 @@ std::unique_ptr<SurfaceSet> world_surface(const std::vector<WorldCollision>& col
 
 // ---- Bullet state -------------------------------------------------------------------------------------------
 
+namespace {
+
+// Bullet's collision algorithms, except a box against a plane: Bullet's plane algorithm finds one point per step
+// (the deepest corner), so a box resting flat on a plane may stand on two corners for good (the points a
+// symmetric solve leaves it on). ODE's dCollideBoxPlane gives every corner that touches: here Bullet's own
+// multipoint option (the box turned slightly three ways around the normal, each turn's deepest corner added)
+// gives the box its corners within a step (docs/COMPAT-physics.md "Contact points").
+class CollisionConfig : public btDefaultCollisionConfiguration {
+ public:
+  CollisionConfig() {
+    box_plane_.m_numPerturbationIterations = plane_box_.m_numPerturbationIterations = 3;
+    box_plane_.m_minimumPointsPerturbationThreshold = plane_box_.m_minimumPointsPerturbationThreshold = 3;
+    plane_box_.m_swapped = true;
+  }
+  btCollisionAlgorithmCreateFunc* getCollisionAlgorithmCreateFunc(int a, int b) override {
+    if (a == BOX_SHAPE_PROXYTYPE && b == STATIC_PLANE_PROXYTYPE) return &box_plane_;
+    if (a == STATIC_PLANE_PROXYTYPE && b == BOX_SHAPE_PROXYTYPE) return &plane_box_;
+    return btDefaultCollisionConfiguration::getCollisionAlgorithmCreateFunc(a, b);
+  }
+
+ private:
+  btConvexPlaneCollisionAlgorithm::CreateFunc box_plane_, plane_box_;
+};
+
+}  // namespace
+
 class BulletRobot;
 
 struct Physics::Impl {
   Options options;
-  btDefaultCollisionConfiguration config;
+  CollisionConfig config;
   IslandDispatcher dispatcher{&config};  // the settled pairs' narrow phase on every core (island_world.hpp)
   btDbvtBroadphase broadphase;
   SurfaceSolver solver;  // Bullet's, with Gazebo's surface rules where a pair needs them (surface.hpp)
