@@ -36,9 +36,10 @@ struct Skid {
   const char* file;
   const char* name;
   double a, b, multiplier;
+  double mu;  // the tyres' mu1 = mu2 [-]
 };
-constexpr Skid kHusky{"skid/husky_like.urdf", "husky", 0.256, 0.2854, 1.875};
-constexpr Skid kJackal{"skid/jackal_like.urdf", "jackal", 0.131, 0.187795, 1.5};
+constexpr Skid kHusky{"skid/husky_like.urdf", "husky", 0.256, 0.2854, 1.875, 1.0};
+constexpr Skid kJackal{"skid/jackal_like.urdf", "jackal", 0.131, 0.187795, 1.5, 0.5};
 
 // The yaw rate [rad/s] of the derivation above for a command w [rad/s].
 double expected_yaw_rate(const Skid& s, double w) { return w * s.multiplier * s.b * s.b / (s.a * s.a + s.b * s.b); }
@@ -91,29 +92,86 @@ double turned(World& w, control::DiffDriveController& dd, const char* name, doub
   return total;
 }
 
-TEST(SkidSteer, Measure) {
-  for (const Skid& s : {kHusky, kJackal}) {
-    auto w = spawned(s, 0.3);
-    w->step(1000);
-    auto& dd = drive(*w, s);
-    drive_for(*w, dd, 0.5, 0.5, 2.0);
-    const Eigen::Vector3d p0 = w->model_state(s.name).pose.translation();
-    const double W = turned(*w, dd, s.name, 0.5, 0.5, 6.0) / 6.0;
-    const ModelState b = w->model_state(s.name);
-    const double V = b.linear.head<2>().norm();
-    std::printf("%s: z %.4f V %.4f W %.4f R %.3f (expected W %.4f) moved %.3f\n", s.name, b.pose.translation().z(), V, W,
-                V / W, expected_yaw_rate(s, 0.5), (b.pose.translation() - p0).head<2>().norm());
-    auto w2 = spawned(s, 0.3);
-    w2->step(1000);
-    auto& dd2 = drive(*w2, s);
-    drive_for(*w2, dd2, 0.5, 0.0, 3.0);
-    std::printf("%s straight: V %.4f\n", s.name, w2->model_state(s.name).linear.head<2>().norm());
-    auto w3 = spawned(s, 0.0);
-    double top = -1e9;
-    for (int i = 0; i < 3000; ++i) {
-      w3->step(1);
-      top = std::max(top, w3->model_state(s.name).pose.translation().z());
-    }
-    std::printf("%s spawn z=0: top %.4f end %.4f\n", s.name, top, w3->model_state(s.name).pose.translation().z());
+// A steady turn at (0.5 m/s, 0.5 rad/s): the base's speed V [m/s] and yaw rate W [rad/s], W averaged over 6 s
+// after 2 s to settle (spawned at z = 0.3, settled 1 s).
+struct Turn {
+  double V, W;
+};
+Turn circle(const Skid& s) {
+  auto w = spawned(s, 0.3);
+  w->step(1000);
+  auto& dd = drive(*w, s);
+  drive_for(*w, dd, 0.5, 0.5, 2.0);
+  const double W = turned(*w, dd, s.name, 0.5, 0.5, 6.0) / 6.0;
+  return {w->model_state(s.name).linear.head<2>().norm(), W};
+}
+
+// The speed [m/s] after 3 s of (0.5 m/s, 0).
+double straight(const Skid& s) {
+  auto w = spawned(s, 0.3);
+  w->step(1000);
+  auto& dd = drive(*w, s);
+  drive_for(*w, dd, 0.5, 0.0, 3.0);
+  return w->model_state(s.name).linear.head<2>().norm();
+}
+
+// Issue 29's target: the ground-truth circle's radius V / W within 15 % of v / w = 1.0 m.
+TEST(SkidSteer, HuskyLikeCircleRadiusWithin15PercentOfCommand) {
+  const Turn t = circle(kHusky);
+  EXPECT_NEAR(t.V / t.W, 1.0, 0.15);
+}
+
+TEST(SkidSteer, JackalLikeCircleRadiusWithin15PercentOfCommand) {
+  const Turn t = circle(kJackal);
+  EXPECT_NEAR(t.V / t.W, 1.0, 0.15);
+}
+
+// The turn rate against the derivation above. What it leaves out is the centripetal force m V W, a share
+// V W / (mu g) of the friction available (g = 9.8): 0.25 / 9.8 = 2.6 % for Husky (mu 1), 5.1 % for Jackal
+// (mu 0.5); that share is the tolerance on W. (A per-direction limit would turn at m w: +80 % and +49 %.)
+TEST(SkidSteer, HuskyLikeTurnsAtTheDerivedYawRate) {
+  const Turn t = circle(kHusky);
+  const double W = expected_yaw_rate(kHusky, 0.5);
+  EXPECT_NEAR(W, 0.5195, 1e-4);
+  EXPECT_NEAR(t.W, W, W * 0.5 * 0.5 / (kHusky.mu * kG));
+}
+
+TEST(SkidSteer, JackalLikeTurnsAtTheDerivedYawRate) {
+  const Turn t = circle(kJackal);
+  const double W = expected_yaw_rate(kJackal, 0.5);
+  EXPECT_NEAR(W, 0.5045, 1e-4);
+  EXPECT_NEAR(t.W, W, W * 0.5 * 0.5 / (kJackal.mu * kG));
+}
+
+// Issue 29's target: straight commands within 5 % of the commanded speed.
+TEST(SkidSteer, HuskyLikeDrivesStraightAtCommandedSpeed) { EXPECT_NEAR(straight(kHusky), 0.5, 0.05 * 0.5); }
+
+TEST(SkidSteer, JackalLikeDrivesStraightAtCommandedSpeed) { EXPECT_NEAR(straight(kJackal), 0.5, 0.05 * 0.5); }
+
+// Husky as husky_gazebo spawns it, at z = 0 (wheels 0.132 m in the ground). Rest height of base_link: wheel
+// radius - wheel joint height = 0.1651 - 0.03282 = 0.13228 m (less m g / (4 kp) = 14 um). Its base is lifted out
+// and rests there (within 1 mm) from 2 s of sim time on (checked to 3 s). (Its vertical speed, measured, stays
+// up to 3.9 mm/s at rest, step to step; not asserted.)
+TEST(SkidSteer, HuskyLikeSpawnedInGroundRestsWithin2s) {
+  const double rest = 0.1651 - 0.03282;
+  auto w = spawned(kHusky, 0.0);
+  w->step(2000);
+  double worst = 0;
+  for (int i = 0; i < 1000; ++i) {
+    w->step(1);
+    worst = std::max(worst, std::abs(w->model_state(kHusky.name).pose.translation().z() - rest));
   }
+  EXPECT_LT(worst, 1e-3);
+}
+
+// Issue 29's target: spawned at z = 0 it never rises more than 0.05 m above its rest height (3 s watched).
+TEST(SkidSteer, HuskyLikeSpawnedInGroundNeverRisesAboveRest) {
+  const double rest = 0.1651 - 0.03282;
+  auto w = spawned(kHusky, 0.0);
+  double top = -1e9;
+  for (int i = 0; i < 3000; ++i) {
+    w->step(1);
+    top = std::max(top, w->model_state(kHusky.name).pose.translation().z());
+  }
+  EXPECT_LT(top, rest + 0.05);
 }
