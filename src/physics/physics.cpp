@@ -4,6 +4,7 @@
 #include "physics.hpp"
 
 #include <btBulletDynamicsCommon.h>
+#include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
@@ -116,11 +117,96 @@ std::unique_ptr<SurfaceSet> world_surface(const std::vector<WorldCollision>& col
 
 // ---- Bullet state -------------------------------------------------------------------------------------------
 
+namespace {
+
+// A box against a plane as ODE's dCollideBoxPlane: every corner of the box within the manifold's contact
+// breaking distance of the plane is a contact point, every step, at the corner's own distance [m] (negative:
+// below). Bullet's plane algorithm adds one point per step (the deepest corner), and its multipoint option only
+// while the manifold holds few points, so the other corners' points go stale as the box slides and are dropped
+// together (a sliding box then stands on one corner for a step and rocks); here each corner's point is replaced
+// every step (the manifold matches it to its cached point, keeping the warm start) and the manifold keeps at most
+// 4 (docs/COMPAT-physics.md "Contact points").
+class BoxPlaneAlgorithm : public btActivatingCollisionAlgorithm {
+ public:
+  BoxPlaneAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* a,
+                    const btCollisionObjectWrapper* b, bool swapped)
+      : btActivatingCollisionAlgorithm(ci, a, b), swapped_(swapped) {
+    const btCollisionObjectWrapper* box = swapped ? b : a;
+    const btCollisionObjectWrapper* plane = swapped ? a : b;
+    if (m_dispatcher->needsCollision(box->getCollisionObject(), plane->getCollisionObject()))
+      manifold_ = m_dispatcher->getNewManifold(box->getCollisionObject(), plane->getCollisionObject());
+  }
+  ~BoxPlaneAlgorithm() override {
+    if (manifold_) m_dispatcher->releaseManifold(manifold_);
+  }
+
+  void processCollision(const btCollisionObjectWrapper* a, const btCollisionObjectWrapper* b, const btDispatcherInfo&,
+                        btManifoldResult* out) override {
+    if (!manifold_) return;
+    const btCollisionObjectWrapper* box = swapped_ ? b : a;
+    const btCollisionObjectWrapper* plane = swapped_ ? a : b;
+    const auto* shape = static_cast<const btBoxShape*>(box->getCollisionShape());
+    const auto* ground = static_cast<const btStaticPlaneShape*>(plane->getCollisionShape());
+    // the plane's normal and offset [m] in its own frame; the box's pose in the plane's frame
+    const btVector3& n = ground->getPlaneNormal();
+    const btScalar offset = ground->getPlaneConstant();
+    const btTransform box_in_plane = plane->getWorldTransform().inverse() * box->getWorldTransform();
+    const btVector3 normal = plane->getWorldTransform().getBasis() * n;  // world
+    out->setPersistentManifold(manifold_);
+    for (int i = 0; i < shape->getNumVertices(); ++i) {
+      btVector3 corner;
+      shape->getVertex(i, corner);  // box frame, half extents with margin: the true box
+      const btVector3 c = box_in_plane(corner);
+      const btScalar distance = n.dot(c) - offset;
+      if (distance >= manifold_->getContactBreakingThreshold()) continue;
+      // the point on the plane under the corner, world
+      out->addContactPoint(normal, plane->getWorldTransform() * (c - distance * n), distance);
+    }
+    if (manifold_->getNumContacts()) out->refreshContactPoints();
+  }
+  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
+                                 btManifoldResult*) override {
+    return btScalar(1);
+  }
+  void getAllContactManifolds(btManifoldArray& manifolds) override {
+    if (manifold_) manifolds.push_back(manifold_);
+  }
+
+  struct CreateFunc : btCollisionAlgorithmCreateFunc {
+    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                   const btCollisionObjectWrapper* a,
+                                                   const btCollisionObjectWrapper* b) override {
+      void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(BoxPlaneAlgorithm));
+      return new (mem) BoxPlaneAlgorithm(ci, a, b, m_swapped);
+    }
+  };
+
+ private:
+  btPersistentManifold* manifold_ = nullptr;
+  bool swapped_;
+};
+
+// Bullet's collision algorithms, except a box against a plane (BoxPlaneAlgorithm).
+class CollisionConfig : public btDefaultCollisionConfiguration {
+ public:
+  CollisionConfig() { plane_box_.m_swapped = true; }
+  btCollisionAlgorithmCreateFunc* getCollisionAlgorithmCreateFunc(int a, int b) override {
+    if (a == BOX_SHAPE_PROXYTYPE && b == STATIC_PLANE_PROXYTYPE) return &box_plane_;
+    if (a == STATIC_PLANE_PROXYTYPE && b == BOX_SHAPE_PROXYTYPE) return &plane_box_;
+    return btDefaultCollisionConfiguration::getCollisionAlgorithmCreateFunc(a, b);
+  }
+
+ private:
+  BoxPlaneAlgorithm::CreateFunc box_plane_, plane_box_;
+};
+
+}  // namespace
+
 class BulletRobot;
 
 struct Physics::Impl {
   Options options;
-  btDefaultCollisionConfiguration config;
+  CollisionConfig config;
   IslandDispatcher dispatcher{&config};  // the settled pairs' narrow phase on every core (island_world.hpp)
   btDbvtBroadphase broadphase;
   SurfaceSolver solver;  // Bullet's, with Gazebo's surface rules where a pair needs them (surface.hpp)

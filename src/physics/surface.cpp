@@ -164,6 +164,8 @@ void SurfaceSolver::convertContacts(btPersistentManifold** manifolds, int count,
   car_.resize(0);
   frictionless_.resize(0);
   no_friction_rows_.resize(0);
+  push_.clear();
+  circle_.clear();
   for (int i = 0; i < count; ++i) {
     btPersistentManifold* m = manifolds[i];
     const bool multibody = btMultiBodyLinkCollider::upcast(m->getBody0()) || btMultiBodyLinkCollider::upcast(m->getBody1());
@@ -289,13 +291,19 @@ void SurfaceSolver::convert(btPersistentManifold* m, const btContactSolverInfo& 
     c.m_originalContactPoint = &cp;
 
     // The depth the normal row corrects [m] (negative distance): less minDepth, and no more than maxVel can
-    // correct in one step at the row's erp.
+    // correct in one step at the row's erp (the surface's maxVel, Gazebo's 0.01 m/s when unset, truncated by the
+    // world's contact_max_correcting_vel). What the cap holds back moves positions only (ODE's split: below).
     const btScalar distance = cp.m_distance1;
     btScalar d = distance;
     if (d < 0 && p.min_depth) d = std::min<btScalar>(d + *p.min_depth, 0);
-    if (d < 0 && p.max_vel) {
+    btScalar push = 0;  // [m/s] correction velocity held back by the cap
+    if (d < 0 && rules) {
       const double erp = p.stiffness ? info.m_timeStep * p.kp / (info.m_timeStep * p.kp + p.kd) : info.m_erp2;
-      if (erp > 0) d = std::max<btScalar>(d, -*p.max_vel * info.m_timeStep / erp);
+      const double cap = std::min(p.max_vel.value_or(kDefaultMaxVel), kMaxCorrectingVel);
+      if (erp > 0 && -d * erp / info.m_timeStep > cap) {
+        push = static_cast<btScalar>(-d * erp / info.m_timeStep - cap);
+        d = static_cast<btScalar>(-cap * info.m_timeStep / erp);
+      }
     }
     cp.m_distance1 = d;
     btScalar relaxation;
@@ -304,6 +312,7 @@ void SurfaceSolver::convert(btPersistentManifold* m, const btContactSolverInfo& 
     else
       setupMultiBodyContactConstraint(c, cp.m_normalWorldOnB, cp.m_appliedImpulse, cp, info, relaxation, false);
     cp.m_distance1 = distance;
+    if (push > 0) push_.push_back({normal_index, push * c.m_jacDiagABInv, 0});
     c.m_frictionIndex = m_multiBodyFrictionContactConstraints.size();
     if (p.mu1 == 0 && p.mu2 == 0) {
       // no friction on this pair: no friction rows (the finish points this row at idle ones)
@@ -326,7 +335,12 @@ void SurfaceSolver::convert(btPersistentManifold* m, const btContactSolverInfo& 
     }
     cp.m_lateralFrictionDir1 = d1;
     cp.m_lateralFrictionDir2 = d2;
-    // each row limited by its own coefficient times the normal impulse (ODE's friction pyramid)
+    // each row limited by its own coefficient times the normal impulse (ODE's friction pyramid); with one
+    // coefficient for both directions, the pair is solved together by Coulomb's isotropic law (docs: "Skid
+    // steering")
+    circle_.resize(m_multiBodyFrictionContactConstraints.size(), 0);
+    circle_.push_back(p.mu1 == p.mu2 ? 1 : 0);
+    circle_.push_back(0);
     if (own_) {
       add_friction_row(cp.m_lateralFrictionDir1, m, normal_index, cp, relaxation, info).m_friction = p.mu1;
       add_friction_row(cp.m_lateralFrictionDir2, m, normal_index, cp, relaxation, info).m_friction = p.mu2;
@@ -368,7 +382,97 @@ btScalar SurfaceSolver::solveGroupCacheFriendlyIterations(btCollisionObject** bo
       note((*rows)[i].m_multiBodyB, (*rows)[i].m_deltaVelBindex);
     }
   for (const auto& t : touched_) t.first->applyDeltaVeeMultiDof2(&m_data.m_deltaVelocities[t.second], btScalar(1));
+  solve_push(info);
   return r;
+}
+
+// ODE's split correction (Gazebo's quickstep: the velocity solve's correction is capped by max_vel, the positions
+// move with the uncapped one, and the velocities then drop it again): what the cap held back is solved as a
+// second problem on the normal rows alone (impulses >= 0, no friction), its velocity change handed to each
+// multibody as its split velocity, which the position step adds and then removes (IslandWorld::integrate).
+void SurfaceSolver::solve_push(const btContactSolverInfo& info) {
+  if (push_.empty()) return;
+  push_dv_.assign(m_data.m_deltaVelocities.size(), 0);
+  const btScalar* jac = &m_data.m_jacobians[0];
+  const btScalar* unit = &m_data.m_deltaVelocitiesUnitImpulse[0];
+  for (int it = 0; it < info.m_numIterations; ++it) {
+    btScalar change = 0;
+    for (auto& r : push_) {
+      const btMultiBodySolverConstraint& c = m_multiBodyNormalContactConstraints[r.row];
+      btScalar dv = 0;
+      int na = 0, nb = 0;
+      if (c.m_multiBodyA) {
+        na = c.m_multiBodyA->getNumDofs() + 6;
+        dv = add_dot(dv, jac + c.m_jacAindex, &push_dv_[c.m_deltaVelAindex], na);
+      }
+      if (c.m_multiBodyB) {
+        nb = c.m_multiBodyB->getNumDofs() + 6;
+        dv = add_dot(dv, jac + c.m_jacBindex, &push_dv_[c.m_deltaVelBindex], nb);
+      }
+      btScalar delta = r.rhs - dv * c.m_jacDiagABInv;
+      if (r.impulse + delta < 0) delta = -r.impulse;
+      r.impulse += delta;
+      for (int i = 0; i < na; ++i) push_dv_[c.m_deltaVelAindex + i] += unit[c.m_jacAindex + i] * delta;
+      for (int i = 0; i < nb; ++i) push_dv_[c.m_deltaVelBindex + i] += unit[c.m_jacBindex + i] * delta;
+      change = btMax(change, delta * delta);
+    }
+    if (change <= info.m_leastSquaresResidualThreshold) break;
+  }
+  std::vector<std::pair<btMultiBody*, int>> pushed;
+  for (const auto& r : push_) {
+    const btMultiBodySolverConstraint& c = m_multiBodyNormalContactConstraints[r.row];
+    for (auto [mb, index] : {std::make_pair(c.m_multiBodyA, c.m_deltaVelAindex),
+                             std::make_pair(c.m_multiBodyB, c.m_deltaVelBindex)}) {
+      if (!mb) continue;
+      bool seen = false;
+      for (const auto& q : pushed) seen = seen || q.first == mb;
+      if (seen) continue;
+      pushed.emplace_back(mb, index);
+      mb->applyDeltaSplitVeeMultiDof(&push_dv_[index], btScalar(1));
+    }
+  }
+}
+
+// The unbounded impulse change [N s] a row asks for now (resolve's first part; nothing applied).
+btScalar SurfaceSolver::wanted(const btMultiBodySolverConstraint& c) {
+  btScalar delta = c.m_rhs - btScalar(c.m_appliedImpulse) * c.m_cfm;
+  const btScalar* jac = &m_data.m_jacobians[0];
+  const btScalar* dv = &m_data.m_deltaVelocities[0];
+  btScalar dva = 0, dvb = 0;
+  if (c.m_multiBodyA) dva = add_dot(dva, jac + c.m_jacAindex, dv + c.m_deltaVelAindex, c.m_multiBodyA->getNumDofs() + 6);
+  else if (c.m_solverBodyIdA >= 0) {
+    btSolverBody& b = m_tmpSolverBodyPool[c.m_solverBodyIdA];
+    dva += c.m_contactNormal1.dot(b.internalGetDeltaLinearVelocity()) + c.m_relpos1CrossNormal.dot(b.internalGetDeltaAngularVelocity());
+  }
+  if (c.m_multiBodyB) dvb = add_dot(dvb, jac + c.m_jacBindex, dv + c.m_deltaVelBindex, c.m_multiBodyB->getNumDofs() + 6);
+  else if (c.m_solverBodyIdB >= 0) {
+    btSolverBody& b = m_tmpSolverBodyPool[c.m_solverBodyIdB];
+    dvb += c.m_contactNormal2.dot(b.internalGetDeltaLinearVelocity()) + c.m_relpos2CrossNormal.dot(b.internalGetDeltaAngularVelocity());
+  }
+  delta -= dva * c.m_jacDiagABInv;
+  delta -= dvb * c.m_jacDiagABInv;
+  return delta;
+}
+
+// Adds an impulse change to a row's bodies (resolve's last part).
+void SurfaceSolver::nudge(btMultiBodySolverConstraint& c, btScalar delta) {
+  c.m_appliedImpulse += delta;
+  const btScalar* unit = &m_data.m_deltaVelocitiesUnitImpulse[0];
+  btScalar* dv = &m_data.m_deltaVelocities[0];
+  if (c.m_multiBodyA) {
+    const int na = c.m_multiBodyA->getNumDofs() + 6;
+    for (int i = 0; i < na; ++i) dv[c.m_deltaVelAindex + i] += unit[c.m_jacAindex + i] * delta;
+  } else if (c.m_solverBodyIdA >= 0) {
+    btSolverBody& b = m_tmpSolverBodyPool[c.m_solverBodyIdA];
+    b.internalApplyImpulse(c.m_contactNormal1 * b.internalGetInvMass(), c.m_angularComponentA, delta);
+  }
+  if (c.m_multiBodyB) {
+    const int nb = c.m_multiBodyB->getNumDofs() + 6;
+    for (int i = 0; i < nb; ++i) dv[c.m_deltaVelBindex + i] += unit[c.m_jacBindex + i] * delta;
+  } else if (c.m_solverBodyIdB >= 0) {
+    btSolverBody& b = m_tmpSolverBodyPool[c.m_solverBodyIdB];
+    b.internalApplyImpulse(c.m_contactNormal2 * b.internalGetInvMass(), c.m_angularComponentB, delta);
+  }
 }
 
 // Bullet's row update, written for the compiler: the Jacobian, the unit-impulse response and the accumulated
@@ -488,10 +592,36 @@ btScalar SurfaceSolver::solveSingleIteration(int iteration, btCollisionObject** 
     if (normal > btScalar(0)) {
       c.m_lowerLimit = -(c.m_friction * normal);
       c.m_upperLimit = c.m_friction * normal;
-      const btScalar r = resolve(c);
-      residual = btMax(residual, r * r);
       if (c.m_multiBodyA) c.m_multiBodyA->setPosUpdated(false);
       if (c.m_multiBodyB) c.m_multiBodyB->setPosUpdated(false);
+      if (j >= static_cast<int>(circle_.size()) || !circle_[j]) {
+        const btScalar r = resolve(c);
+        residual = btMax(residual, r * r);
+        continue;
+      }
+      // Coulomb's law for the pair (docs: "Skid steering"): both rows' unbounded changes together; inside the
+      // circle mu N the contact sticks, outside it slides with the force mu N against its slip velocity (the
+      // rows' velocity errors [m/s] along their unit directions)
+      btMultiBodySolverConstraint& c2 = m_multiBodyFrictionContactConstraints[++j];
+      const btScalar d1 = wanted(c), d2 = wanted(c2);
+      const btScalar limit = c.m_friction * normal;
+      btScalar n1 = c.m_appliedImpulse + d1, n2 = c2.m_appliedImpulse + d2;
+      if (n1 * n1 + n2 * n2 > limit * limit) {
+        const btScalar e1 = d1 / c.m_jacDiagABInv, e2 = d2 / c2.m_jacDiagABInv;
+        const btScalar e = btSqrt(e1 * e1 + e2 * e2);
+        const btScalar t = btSqrt(n1 * n1 + n2 * n2);
+        // no slip to follow: scaled back onto the circle
+        n1 = limit * (e > 0 ? e1 / e : n1 / t);
+        n2 = limit * (e > 0 ? e2 / e : n2 / t);
+      }
+      const btScalar a1 = n1 - c.m_appliedImpulse, a2 = n2 - c2.m_appliedImpulse;
+      nudge(c, a1);
+      nudge(c2, a2);
+      // Bullet's residual term: the rows' velocity change squared
+      residual = btMax(residual, btMax(a1 * a1 / (c.m_jacDiagABInv * c.m_jacDiagABInv),
+                                       a2 * a2 / (c2.m_jacDiagABInv * c2.m_jacDiagABInv)));
+    } else if (j < static_cast<int>(circle_.size()) && circle_[j]) {
+      ++j;
     }
   }
   return residual;

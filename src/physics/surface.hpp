@@ -22,6 +22,10 @@ namespace physics {
 // Gazebo's contact defaults for a surface that sets nothing (sdf 1.6 surface.sdf, contact/ode).
 constexpr double kDefaultKp = 1e12;  // [N/m]
 constexpr double kDefaultKd = 1.0;   // [N s/m]
+// The correction velocity cap for a surface that sets no maxVel (surface.sdf contact/ode/max_vel), and the world's
+// contact_max_correcting_vel (physics.sdf ode/constraints), which truncates every surface's.
+constexpr double kDefaultMaxVel = 0.01;      // [m/s]
+constexpr double kMaxCorrectingVel = 100.0;  // [m/s]
 
 // One shape's surface.
 struct Surface {
@@ -110,6 +114,13 @@ class SurfaceSolver : public btMultiBodyConstraintSolver {
   void convert(btPersistentManifold* m, const btContactSolverInfo& info, bool rules);
   // One row (Bullet's resolveSingleConstraintRowGeneric); returns its velocity change, Bullet's residual term.
   btScalar resolve(const btMultiBodySolverConstraint& c);
+  // Adds delta to a row's impulse and its bodies' velocity changes.
+  void nudge(btMultiBodySolverConstraint& c, btScalar delta);
+  // The unbounded impulse change [N s] a row asks for now (nothing applied).
+  btScalar wanted(const btMultiBodySolverConstraint& c);
+  // ODE's split correction: the capped part of each normal row's correction, solved on its own and given to the
+  // multibodies as split velocities (positions only).
+  void solve_push(const btContactSolverInfo& info);
 
   // ---- row set-up with factored mass matrices (docs/COMPAT-physics.md "Row set-up") ----
   // Whether this solve's contact rows are set up by car (Bullet's rules that car's set-up covers: no articulated
@@ -141,6 +152,14 @@ class SurfaceSolver : public btMultiBodyConstraintSolver {
   btAlignedObjectArray<btPersistentManifold*> car_;
   btAlignedObjectArray<btPersistentManifold*> frictionless_;
   btAlignedObjectArray<int> no_friction_rows_;  // normal rows without friction rows
+  struct PushRow {
+    int row;             // normal row index
+    btScalar rhs;        // [N s] impulse for the held-back correction velocity
+    btScalar impulse;    // [N s] accumulated
+  };
+  std::vector<PushRow> push_;
+  std::vector<btScalar> push_dv_;  // split velocity changes, laid out as m_data.m_deltaVelocities
+  std::vector<char> circle_;       // per friction row: first of a pair solved by Coulomb's isotropic law
 };
 
 }  // namespace physics

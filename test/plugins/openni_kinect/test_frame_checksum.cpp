@@ -4,6 +4,8 @@
 // (rgb8, bgr8, mono8), seeded gaussian colour noise, and one thread against two. A checksum is FNV-1a 64 over the
 // bytes of image, depth, points and point_rgb, frame after frame (NaN bits included). Compiler flags that change
 // float rounding (e.g. FMA contraction with -march) change them too: then retake them from the unchanged code.
+// A physics change that moves what the camera sees changes them as well (mono8, issue 29: the boxes level out
+// on all their corners and rest 0.4 um elsewhere): retake those from the changed code and say why.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -96,6 +98,6 @@ TEST(KinectFrames, Bgr8WithSeededNoiseKeepsItsChecksum) {
 }
 
 TEST(KinectFrames, Mono8KeepsItsChecksum) {
-  check({"mono8", kinect("L8"), 1.0, -0.5, 0.7, 0, 0x0c177a2c8a048f95ull});
-  check({"mono8 noisy", kinect("L8", 0.0, 0.05), 1.0, -0.5, 0.7, 3, 0xbf23a1cae6df34edull});
+  check({"mono8", kinect("L8"), 1.0, -0.5, 0.7, 0, 0x057407819e6242b2ull});
+  check({"mono8 noisy", kinect("L8", 0.0, 0.05), 1.0, -0.5, 0.7, 3, 0x58ebb3077da8fb24ull});
 }
