@@ -21,6 +21,7 @@ PY_DEBIAN = {
     'rosgraph': ('rosgraph', 'python3-rosgraph'),
     'roslaunch': ('roslaunch', 'python3-roslaunch'),
     'rostest': ('rostest', 'python3-rostest'),
+    'rosbag': ('rosbag', 'python3-rosbag'),
     'rospkg': ('python3-rospkg', 'python3-rospkg'),
     'roslib': ('roslib', 'python3-roslib'),
     'rosunit': ('rosunit', 'python3-rosunit'),

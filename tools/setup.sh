@@ -10,7 +10,7 @@ DEB_PACKAGES=(
   build-essential cmake pkg-config catkin python3-catkin-pkg python3-venv python3-pip python3-dev python3-numpy python3-yaml
   python3-matplotlib python3-tqdm
   ros-core-dev ros-base-dev libroscpp-dev python3-rospy python3-roslaunch python3-rostest python3-rosgraph
-  python3-rospkg python3-roslib
+  python3-rospkg python3-roslib python3-rosbag
   liburdfdom-dev liburdfdom-headers-dev libconsole-bridge-dev libtinyxml2-dev libeigen3-dev pybind11-dev
   libbullet-dev libsdformat-dev libembree-dev libassimp-dev
   libtf2-ros-dev python3-tf2-ros libsensor-msgs-dev python3-sensor-msgs libnav-msgs-dev python3-nav-msgs
