@@ -1,0 +1,101 @@
+#!/usr/bin/env bash
+# Fuzzes car's loaders with libFuzzer (issue 28, docs/RELIABILITY.md): builds test/fuzz/fuzz_*.cpp with clang in
+# .ws-asan/ (tools/sanitize.sh's ASan+UBSan build; -DCAR_FUZZ=ON adds libFuzzer's coverage hooks), seeds each target from test/data/ and
+# runs them one after the other on one core (nice 10).
+# Usage: tools/fuzz.sh [--smoke] [--cov] [SECONDS] [TARGET...]
+#   --smoke    60 s per target (CI's smoke); SECONDS per target otherwise (default 600)
+#   --cov      afterwards, the lines of src/model and src/description the corpora execute (llvm-cov)
+# The rule (test/fuzz/fuzz_common.hpp): an input loads or is refused with FILE[:LINE]: ELEMENT: REASON; never a
+# crash, a hang over 1 s, over 2 GB, or a non-finite state after the steps. Exits 1 when a target found an input
+# that breaks it (saved under test/fuzz/out/TARGET/).
+set -uo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$ROOT"
+# shellcheck source=tools/sanitizers/workspace.sh
+source tools/sanitizers/workspace.sh
+ALL=(urdf sdf_world sdf_model spawn ros_control)
+secs=600 cov=0 targets=()
+for a in "$@"; do
+  case "$a" in
+    --smoke) secs=60 ;;
+    --cov) cov=1 ;;
+    [0-9]*) secs="$a" ;;
+    *) targets+=("$a") ;;
+  esac
+done
+[ ${#targets[@]} -gt 0 ] || targets=("${ALL[@]}")
+WS="$ROOT/.ws-asan"   # the ASan+UBSan build of tools/sanitize.sh, with -DCAR_FUZZ=ON
+BIN="$WS/devel/lib/car"
+JOBS="${JOBS:-1}"
+
+# ---- build ---------------------------------------------------------------------------------------------------
+make_workspace "$WS"
+set +u; source /opt/ros/noetic/setup.bash 2>/dev/null; set -u
+fuzz_targets=(); for t in "${ALL[@]}"; do fuzz_targets+=("fuzz_$t"); done
+if [ ! -f "$WS/build/Makefile" ]; then
+  (cd "$WS" && CC=clang-14 CXX=clang++-14 catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
+    -DCATKIN_ENABLE_TESTING=ON -DCAR_SANITIZE=address,undefined -DCAR_FUZZ=ON -j"$JOBS" "${fuzz_targets[@]}" > build.log 2>&1) || { tail -n 40 "$WS/build.log"; exit 1; }
+else
+  make -C "$WS/build" -j"$JOBS" "${fuzz_targets[@]}" > "$WS/build.log" 2>&1 || { tail -n 40 "$WS/build.log"; exit 1; }
+fi
+
+# ---- seeds: test/data's robots, worlds and models, the hostile corpus (test/data/bad) -------------------------
+seeds() {  # seeds TARGET DIR
+  local t="$1" d="$2" f
+  rm -rf "$d"; mkdir -p "$d"
+  case "$t" in
+    urdf) find test/data urdf -name '*.urdf' -size -256k -exec cp -t "$d" --backup=numbered {} + ;;
+    sdf_world) find test/data worlds -name '*.world' -size -256k -exec cp -t "$d" --backup=numbered {} + ;;
+    sdf_model) find test/data models -name '*.sdf' -size -256k -exec cp -t "$d" --backup=numbered {} + ;;
+    spawn)
+      # the request header (name|namespace|frame|pose, then a set_model_state) over each robot
+      for f in $(find test/data -name '*.urdf' -size -64k | head -n 40) $(find test/data models -name '*.sdf' -size -64k); do
+        { printf 'robot|/ns|world|0 0 0.5 0 0 0 1\n1 2 0.5 0 0 0.38 0.92 0.1 0 0 0 0 0.2\n'; cat "$f"; } \
+          > "$d/$(echo "$f" | tr / _)"
+      done ;;
+    ros_control) cp test/fuzz/seeds/ros_control/* "$d/" ;;
+  esac
+}
+
+# ---- fuzz, one target at a time on one core --------------------------------------------------------------------
+broken=0
+summary=""
+for t in "${targets[@]}"; do
+  seed="$WS/seeds/$t" corpus="$WS/corpus/$t" out="$ROOT/test/fuzz/out/$t"
+  seeds "$t" "$seed"
+  mkdir -p "$corpus" "$out"
+  [ -d "test/fuzz/corpus/$t" ] && cp -n test/fuzz/corpus/"$t"/* "$corpus/" 2>/dev/null
+  dict=(); [ "$t" = ros_control ] || dict=(-dict=test/fuzz/xml.dict)
+  echo "fuzz: $t for $secs s ..."
+  log="$WS/fuzz-$t.log"
+  TIMEFORMAT='%U %S'
+  cpu=$( { time LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=1 \
+      UBSAN_OPTIONS=print_stacktrace=1 nice -n 10 "$BIN/fuzz_$t" -timeout=1 -rss_limit_mb=2048 -max_len=65536 \
+      -max_total_time="$secs" -print_final_stats=1 -artifact_prefix="$out/" "${dict[@]}" "$corpus" "$seed" \
+      > "$log" 2>&1; } 2>&1 )
+  cpu=$(echo "$cpu" | awk '{printf "%.0f", $1 + $2}')
+  execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$')
+  found=$(find "$out" -type f \( -name 'crash-*' -o -name 'timeout-*' -o -name 'oom-*' -o -name 'leak-*' \) | wc -l)
+  [ "$found" -eq 0 ] || { broken=1; grep -m3 -A12 'ERROR\|RULE BROKEN\|ALARM' "$log"; }
+  echo "fuzz: $t: ${cpu} CPU s, ${execs:-?} inputs, $found finding(s) in $out"
+  summary+="$t ${cpu} CPU s ${found} findings; "
+done
+
+# ---- coverage of the loaders over the corpora ------------------------------------------------------------------
+if [ $cov -eq 1 ]; then
+  prof="$WS/prof"; rm -rf "$prof"; mkdir -p "$prof"
+  objs=()
+  for t in "${ALL[@]}"; do
+    [ -d "$WS/corpus/$t" ] || continue
+    LLVM_PROFILE_FILE="$prof/$t.profraw" ASAN_OPTIONS=detect_leaks=0 "$BIN/fuzz_$t" -runs=0 -timeout=5 \
+      "$WS/corpus/$t" "$WS/seeds/$t" > "$WS/cov-$t.log" 2>&1
+    objs+=(-object "$BIN/fuzz_$t")
+  done
+  llvm-profdata-14 merge -sparse "$prof"/*.profraw -o "$prof/all.profdata"
+  llvm-cov-14 report "${objs[@]:1}" -instr-profile="$prof/all.profdata" \
+    "$WS/src/car/src/model" "$WS/src/car/src/description" 2>/dev/null | tail -n 20
+fi
+echo "fuzz: ${summary%; }"
+[ $broken -eq 0 ] && echo "fuzz: no input broke the rule" || echo "fuzz: FAILED: inputs that broke the rule are in test/fuzz/out/"
+exit $broken
