@@ -4,11 +4,12 @@
 #   asan   .ws-asan/, clang with -DCAR_SANITIZE=address,undefined (and -DCAR_FUZZ=ON: the same build serves
 #          tools/fuzz.sh): every gtest (test_core) and the Python API tests that load car._core (Debian's python3 is
 #          not instrumented: the runtime is preloaded, see below)
-#   tsan   .ws-tsan/, gcc with -DCAR_SANITIZE=thread: test_threads (the publishing thread, the pacer, the pool behind
+#   tsan   .ws-tsan/, clang with -DCAR_SANITIZE=thread: test_threads (the publishing thread, the pacer, the pool behind
 #          parallel_for, built without car_sim) and test_core's threaded gtests (the island solver on 1-3 threads,
 #          the cameras' banded rendering), which needs car_sim built with TSan
 #   tsan-quick  test_threads only
-# Usage: tools/sanitize.sh [asan] [tsan|tsan-quick]   (asan and tsan when none given). JOBS=N (default 2).
+# Usage: tools/sanitize.sh [asan|asan-gtest|asan-pytest] [tsan|tsan-quick]   (asan and tsan when none given).
+# JOBS=N for the builds (default 2).
 # Each process writes its reports to $OUT/<stage>/ (log_path): any file there fails the stage. Suppressions, for
 # third-party code only, are in tools/sanitizers/*.supp, each with its reason.
 set -uo pipefail
@@ -81,7 +82,9 @@ asan_gtest() {
 }
 
 asan_pytest() {
-  local d="$OUT/asan-pytest" files=() t; rm -rf "$d"; mkdir -p "$d"
+  local d="$OUT/asan-pytest" files=() t PY=/usr/bin/python3; rm -rf "$d"; mkdir -p "$d"
+  # the project's venv (tools/setup.sh) where there is one: PyPI's xacro for the xacro cases
+  [ -x "$ROOT/.venv/bin/python3" ] && PY="$ROOT/.venv/bin/python3"
   for t in "${PY_TESTS[@]}"; do files+=("test/python/$t.py"); done
   # Debian's python3 is not built with ASan, so the runtime (clang's shared one, which holds UBSan's too) must come
   # first: LD_PRELOAD. detect_leaks=0 because
@@ -92,7 +95,7 @@ asan_pytest() {
     LD_PRELOAD="$(clang++-14 -print-file-name=libclang_rt.asan-x86_64.so)" PYTHONMALLOC=malloc LLVM_PROFILE_FILE=/dev/null \
     LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS="log_path=$d/asan:detect_leaks=0:hard_rss_limit_mb=2048" \
     UBSAN_OPTIONS="log_path=$d/ubsan:print_stacktrace=1:halt_on_error=1:suppressions=$SUPP/ubsan.supp" \
-      /usr/bin/python3 -m pytest -q -p no:cacheprovider "${files[@]}" > "$d.log" 2>&1 )
+      "$PY" -m pytest -q -p no:cacheprovider "${files[@]}" > "$d.log" 2>&1 )
   local rc=$?
   tail -n 5 "$d.log"
   reports "$d" || rc=1
@@ -115,11 +118,13 @@ for s in "${stages[@]}"; do
       stage asan-build build .ws-asan address,undefined clang++-14 -DCAR_FUZZ=ON test_core _core || continue
       stage asan-gtest asan_gtest
       stage asan-pytest asan_pytest ;;
+    asan-gtest|asan-pytest)  # one half, on the build that is there
+      stage "$s" "${s/-/_}" ;;
     tsan|tsan-quick)
-      stage tsan-build-threads build .ws-tsan thread g++ -DCAR_FUZZ=OFF test_threads || continue
+      stage tsan-build-threads build .ws-tsan thread clang++-14 -DCAR_FUZZ=OFF test_threads || continue
       stage tsan-threads tsan_run tsan-threads .ws-tsan/devel/lib/car/test_threads
       [ "$s" = tsan ] || continue
-      stage tsan-build-core build .ws-tsan thread g++ -DCAR_FUZZ=OFF test_core || continue
+      stage tsan-build-core build .ws-tsan thread clang++-14 -DCAR_FUZZ=OFF test_core || continue
       stage tsan-core tsan_run tsan-core .ws-tsan/devel/lib/car/test_core --gtest_filter="$TSAN_FILTER" ;;
     *) echo "sanitize: unknown stage '$s' (asan, tsan, tsan-quick)"; exit 2 ;;
   esac

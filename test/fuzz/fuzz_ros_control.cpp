@@ -29,7 +29,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto t = params.find("type");
   if (t == params.end() || t->second.size() != 1) return 0;  // the adapter refuses this itself
   car_fuzz::run([&] {
-    car_sim::World w(car_sim::empty_world());
+    car_sim::World w(car_fuzz::empty());
     w.spawn(arm, "arm", Eigen::Isometry3d::Identity());
     auto* rc = dynamic_cast<car_sim::RosControl*>(w.plugin("arm", "gazebo_ros_control"));
     if (!rc) car_fuzz::broke("the arm fixture has no gazebo_ros_control");
@@ -40,8 +40,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       return;
     }
     std::string why;
-    if (rc->switch_controllers({"c"}, {}, true, &why)) car_fuzz::step_and_check(w);
-    else if (why.empty()) car_fuzz::broke("a refused switch without a reason");
+    if (rc->switch_controllers({"c"}, {}, true, &why)) {
+      car_fuzz::step_and_check(w);
+      if (!rc->switch_controllers({}, {"c"}, true, &why)) car_fuzz::broke("the controller does not stop: " + why);
+    } else if (why.empty()) {
+      car_fuzz::broke("a refused switch without a reason");
+    }
     rc->unload("c");
   });
   return 0;

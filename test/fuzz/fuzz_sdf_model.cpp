@@ -11,7 +11,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string xml(reinterpret_cast<const char*>(data), size);
   car_fuzz::run([&] {
     const car_sim::SdfRobot robot = car_sim::load_sdf_model_string(xml, "fuzz.sdf");
-    car_sim::World w(car_sim::empty_world());
+    car_sim::World w(car_fuzz::empty());
     w.spawn_sdf(robot, "robot", Eigen::Isometry3d::Identity());
     car_fuzz::step_and_check(w);
   });

@@ -57,7 +57,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string& ns = f[1];
   // SimNode::spawn: only '' and 'world' are supported reference frames
   if (!(f[2].empty() || f[2] == "world")) return 0;
-  car_sim::World w(car_sim::empty_world());
+  car_sim::World w(car_fuzz::empty());
   car_fuzz::run([&] {
     try {
       const bool is_sdf = car_sim::is_sdf_document(rest);

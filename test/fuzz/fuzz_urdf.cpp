@@ -13,7 +13,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   car_fuzz::run([&] {
     const car_sim::RobotModel model = car_sim::load_urdf_string(xml, "fuzz.urdf");
     car_sim::resolve_plugins(model);
-    car_sim::World w(car_sim::empty_world());
+    car_sim::World w(car_fuzz::empty());
     w.spawn(model, "robot", Eigen::Isometry3d::Identity());
     car_fuzz::step_and_check(w);
   });
