@@ -5,6 +5,8 @@
 # Usage: tools/fuzz.sh [--smoke] [--cov] [SECONDS] [TARGET...]
 #   --smoke    60 s per target (CI's smoke); SECONDS per target otherwise (default 600)
 #   --no-build run what .ws-asan/ holds
+#   --recheck  only re-measure the timeouts already in test/fuzz/out/ (see recheck below), fuzz nothing
+#   --save     afterwards, minimise each corpus (-merge=1) into test/fuzz/corpus/TARGET/ (committed)
 #   --cov      afterwards, the lines of src/model and src/description the corpora execute (llvm-cov)
 # The rule (test/fuzz/fuzz_common.hpp): an input loads or is refused with FILE[:LINE]: ELEMENT: REASON; never a
 # crash, a hang over 1 s, over 2 GB, or a non-finite state after the steps. Exits 1 when a target found an input
@@ -15,12 +17,14 @@ cd "$ROOT"
 # shellcheck source=tools/sanitizers/workspace.sh
 source tools/sanitizers/workspace.sh
 ALL=(urdf sdf_world sdf_model spawn ros_control)
-secs=600 cov=0 build=1 targets=()
+secs=600 cov=0 build=1 recheck_only=0 save=0 targets=()
 for a in "$@"; do
   case "$a" in
     --smoke) secs=60 ;;
     --cov) cov=1 ;;
     --no-build) build=0 ;;
+    --recheck) recheck_only=1 ;;
+    --save) save=1 ;;
     [0-9]*) secs="$a" ;;
     *) targets+=("$a") ;;
   esac
@@ -65,10 +69,45 @@ seeds() {  # seeds TARGET DIR
   esac
 }
 
+# libFuzzer's -timeout is wall time, and on a busy machine a timeout may be the load, not the input. Each one is
+# run again alone and measured in CPU time (user + sys, less the process's start): its loading (CAR_FUZZ_NO_STEP=1)
+# must take under the rule's 1 s, and the whole input with its steps under 10 s (the instrumented build is 3-5
+# times slower than a release build; fuzz_common.hpp caps the steps). One that passes both is kept in
+# out/TARGET/load/ and not counted.
+cpu_of() {  # cpu_of [ENV=V] ARGS...: CPU seconds of one run of the target
+  { time env LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS=detect_leaks=0 "$@" > /dev/null 2>&1; } 2>&1 |
+    awk '{print $1 + $2}'
+}
+recheck() {  # recheck TARGET
+  local t="$1" out="$ROOT/test/fuzz/out/$1" f load_s all_s base_s empty
+  TIMEFORMAT='%U %S'
+  compgen -G "$out/timeout-*" > /dev/null || return 0
+  # the process's own start (ASan, libFuzzer's tables, LLVMFuzzerInitialize's warm-up): an empty input's CPU time
+  empty="$(mktemp)"
+  base_s=$(cpu_of CAR_FUZZ_NO_STEP=1 "$BIN/fuzz_$t" -timeout=600 -runs=1 "$empty")
+  rm -f "$empty"
+  for f in "$out"/timeout-*; do
+    [ -e "$f" ] || continue
+    load_s=$(cpu_of CAR_FUZZ_NO_STEP=1 "$BIN/fuzz_$t" -timeout=600 -runs=1 "$f")
+    all_s=$(cpu_of "$BIN/fuzz_$t" -timeout=600 -runs=1 "$f")
+    echo "fuzz: $t: $(basename "$f"): loading ${load_s} CPU s, with the steps ${all_s} CPU s, start ${base_s} CPU s"
+    if awk -v a="$load_s" -v b="$all_s" -v z="$base_s" 'BEGIN { exit !(a - z < 1.0 && b - z < 10.0) }'; then
+      mkdir -p "$out/load"; mv "$f" "$out/load/"
+    fi
+  done
+}
+
 # ---- fuzz, one target at a time on one core --------------------------------------------------------------------
 broken=0
 summary=""
 for t in "${targets[@]}"; do
+  if [ $recheck_only -eq 1 ]; then
+    recheck "$t"
+    found=$(find "$ROOT/test/fuzz/out/$t" -maxdepth 1 -type f 2>/dev/null | wc -l)
+    [ "$found" -eq 0 ] || broken=1
+    summary+="$t $found findings; "
+    continue
+  fi
   seed="$WS/seeds/$t" corpus="$WS/corpus/$t" out="$ROOT/test/fuzz/out/$t"
   seeds "$t" "$seed"
   mkdir -p "$corpus" "$out"
@@ -84,20 +123,22 @@ for t in "${targets[@]}"; do
       > "$log" 2>&1; } 2>&1 )
   cpu=$(echo "$cpu" | awk '{printf "%.0f", $1 + $2}')
   execs=$(grep -o 'exec/s: [0-9]*\|#[0-9]*' "$log" | grep -o '^#[0-9]*' | tail -n 1 | tr -d '#')
-  # libFuzzer's -timeout is wall time, and on a busy machine a timeout may be the load, not the input: each one is
-  # run again alone and its CPU time (user + sys, process start included) held to the rule's 1 s; one under it is
-  # kept in out/TARGET/load/, not counted.
-  for f in "$out"/timeout-*; do
-    [ -e "$f" ] || continue
-    c=$( { time LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS=detect_leaks=0 "$BIN/fuzz_$t" -timeout=60 -runs=1 "$f" \
-      > /dev/null 2>&1; } 2>&1 | awk '{print ($1 + $2 < 1.0) ? "ok" : "slow"}')
-    if [ "$c" = ok ]; then mkdir -p "$out/load"; mv "$f" "$out/load/"; fi
-  done
+  recheck "$t"
   found=$(find "$out" -maxdepth 1 -type f \( -name 'crash-*' -o -name 'timeout-*' -o -name 'oom-*' -o -name 'leak-*' \) | wc -l)
   [ "$found" -eq 0 ] || { broken=1; grep -m3 -A12 'ERROR\|RULE BROKEN\|ALARM' "$log"; }
   echo "fuzz: $t: ${cpu} CPU s, ${execs:-?} inputs, $found finding(s) in $out"
   summary+="$t ${cpu} CPU s ${found} findings; "
 done
+
+# ---- the minimised corpora, kept in the repository as the next run's start ----------------------------------------
+if [ $save -eq 1 ]; then
+  for t in "${targets[@]}"; do
+    rm -rf "test/fuzz/corpus/$t"; mkdir -p "test/fuzz/corpus/$t"
+    LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS=detect_leaks=0 CAR_FUZZ_NO_STEP=1 nice -n 10 "$BIN/fuzz_$t" -merge=1 \
+      -timeout=30 "test/fuzz/corpus/$t" "$WS/corpus/$t" > "$WS/merge-$t.log" 2>&1
+    echo "fuzz: $t: corpus $(ls "test/fuzz/corpus/$t" | wc -l) files, $(du -sh "test/fuzz/corpus/$t" | cut -f1)"
+  done
+fi
 
 # ---- coverage of the loaders over the corpora ------------------------------------------------------------------
 if [ $cov -eq 1 ]; then
@@ -110,8 +151,9 @@ if [ $cov -eq 1 ]; then
     objs+=(-object "$BIN/fuzz_$t")
   done
   llvm-profdata-14 merge -sparse "$prof"/*.profraw -o "$prof/all.profdata"
-  llvm-cov-14 report "${objs[@]:1}" -instr-profile="$prof/all.profdata" \
-    "$WS/src/car/src/model" "$WS/src/car/src/description" 2>/dev/null | tail -n 20
+  # the loaders live in libcar_sim.so: it is the report's first object, the targets the others
+  llvm-cov-14 report "$WS/devel/lib/libcar_sim.so" "${objs[@]}" -instr-profile="$prof/all.profdata" \
+    "$WS/src/car/src/model" "$WS/src/car/src/description" 2>/dev/null | tee "$WS/coverage.txt" | tail -n 20
 fi
 echo "fuzz: ${summary%; }"
 [ $broken -eq 0 ] && echo "fuzz: no input broke the rule" || echo "fuzz: FAILED: inputs that broke the rule are in test/fuzz/out/"
