@@ -112,6 +112,8 @@ for t in "${targets[@]}"; do
   seeds "$t" "$seed"
   mkdir -p "$corpus" "$out"
   [ -d "test/fuzz/corpus/$t" ] && cp -n test/fuzz/corpus/"$t"/* "$corpus/" 2>/dev/null
+  # every input that once broke the rule (test/fuzz/regressions/TARGET/) runs first, each run
+  [ -d "test/fuzz/regressions/$t" ] && cp test/fuzz/regressions/"$t"/* "$seed/" 2>/dev/null
   dict=(); [ "$t" = ros_control ] || dict=(-dict=test/fuzz/xml.dict)
   echo "fuzz: $t for $secs s ..."
   log="$WS/fuzz-$t.log"
