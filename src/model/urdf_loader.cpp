@@ -65,9 +65,13 @@ static std::string format_error(const std::string& file, int line, const std::st
   return os.str();
 }
 
+// An error always names its source: a document given without a name (an empty SpawnModel model_name, found by
+// test/fuzz/fuzz_spawn) is "<string>", the loaders' default name, not "" (": malformed XML: ...").
+static std::string source_or_default(std::string file) { return file.empty() ? "<string>" : file; }
+
 LoadError::LoadError(std::string file, int line, std::string element, std::string reason)
-    : std::runtime_error(format_error(file, line, element, reason)),
-      file_(std::move(file)),
+    : std::runtime_error(format_error(source_or_default(file), line, element, reason)),
+      file_(source_or_default(std::move(file))),
       line_(line),
       element_(std::move(element)),
       reason_(std::move(reason)) {}

@@ -164,6 +164,18 @@ TEST(ModelErrors, MalformedXmlNamesTheLine) {
   }
 }
 
+// A document without a source name (a SpawnModel request with an empty model_name; test/fuzz/fuzz_spawn's first
+// finding) is named "<string>" in its error, never "": the message keeps FILE[:LINE]: ELEMENT: REASON.
+TEST(ModelErrors, AnUnnamedDocumentIsNamedStringInItsError) {
+  try {
+    load_urdf_string("", "");
+    FAIL() << "no error";
+  } catch (const LoadError& e) {
+    EXPECT_EQ(e.file(), "<string>");
+    EXPECT_STREQ(e.what(), "<string>: malformed XML: empty document");
+  }
+}
+
 TEST(ModelErrors, ZeroMassNamesTheLink) {
   try {
     load_urdf_file(data_path("bad/zero_mass.urdf"));

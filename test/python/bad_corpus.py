@@ -89,6 +89,10 @@ def path_of(name: str, entry: dict, tmpdir: str) -> str:
 # ---- bounded runs -----------------------------------------------------------------------------------------
 
 def _limit_memory():
+    # Under AddressSanitizer (tools/sanitize.sh) the address space holds ASan's shadow (terabytes, reserved, not
+    # used): RLIMIT_AS would stop the program before main. sanitize.sh bounds it with hard_rss_limit_mb instead.
+    if 'hard_rss_limit_mb' in os.environ.get('ASAN_OPTIONS', ''):
+        return
     resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, MEMORY_LIMIT))
 
 

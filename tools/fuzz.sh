@@ -1,0 +1,163 @@
+#!/usr/bin/env bash
+# Fuzzes car's loaders with libFuzzer (issue 28, docs/RELIABILITY.md): builds test/fuzz/fuzz_*.cpp with clang in
+# .ws-asan/ (tools/sanitize.sh's ASan+UBSan build; -DCAR_FUZZ=ON adds libFuzzer's coverage hooks), seeds each target from test/data/ and
+# runs them one after the other on one core (nice 10).
+# Usage: tools/fuzz.sh [--smoke] [--cov] [SECONDS] [TARGET...]
+#   --smoke    60 s per target (CI's smoke); SECONDS per target otherwise (default 600)
+#   --no-build run what .ws-asan/ holds
+#   --recheck  only re-measure the timeouts already in test/fuzz/out/ (see recheck below), fuzz nothing
+#   --save     afterwards, minimise each corpus (-merge=1) into test/fuzz/corpus/TARGET/ (committed)
+#   --cov      afterwards, the lines of src/model and src/description the corpora execute (llvm-cov)
+# The rule (test/fuzz/fuzz_common.hpp): an input loads or is refused with FILE[:LINE]: ELEMENT: REASON; never a
+# crash, a hang over 1 s, over 2 GB, or a non-finite state after the steps. Exits 1 when a target found an input
+# that breaks it (saved under test/fuzz/out/TARGET/).
+set -uo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$ROOT"
+# shellcheck source=tools/sanitizers/workspace.sh
+source tools/sanitizers/workspace.sh
+ensure_clang || { echo "sanitizers: could not install clang 14"; exit 1; }
+ALL=(urdf sdf_world sdf_model spawn ros_control)
+secs=600 cov=0 build=1 recheck_only=0 save=0 targets=()
+for a in "$@"; do
+  case "$a" in
+    --smoke) secs=60 ;;
+    --cov) cov=1 ;;
+    --no-build) build=0 ;;
+    --recheck) recheck_only=1 ;;
+    --save) save=1 ;;
+    [0-9]*) secs="$a" ;;
+    *) targets+=("$a") ;;
+  esac
+done
+[ ${#targets[@]} -gt 0 ] || targets=("${ALL[@]}")
+WS="$ROOT/.ws-asan"   # the ASan+UBSan build of tools/sanitize.sh, with -DCAR_FUZZ=ON
+BIN="$WS/devel/lib/car"
+JOBS="${JOBS:-1}"
+# [s] wall time per input before libFuzzer calls it a hang: the rule's 1 s; FUZZ_TIMEOUT=3 on a machine so busy
+# that a process gets a third of a core (each timeout is re-measured in CPU time below either way)
+TIMEOUT="${FUZZ_TIMEOUT:-1}"
+
+# ---- build ---------------------------------------------------------------------------------------------------
+make_workspace "$WS"
+set +u; source /opt/ros/noetic/setup.bash 2>/dev/null; set -u
+fuzz_targets=(); for t in "${ALL[@]}"; do fuzz_targets+=("fuzz_$t"); done
+if [ $build -eq 0 ]; then
+  :
+elif [ ! -f "$WS/build/Makefile" ]; then
+  (cd "$WS" && CC=clang-14 CXX=clang++-14 catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
+    -DCATKIN_ENABLE_TESTING=ON -DCAR_SANITIZE=address,undefined -DCAR_FUZZ=ON -j"$JOBS" "${fuzz_targets[@]}" > build.log 2>&1) || { tail -n 40 "$WS/build.log"; exit 1; }
+else
+  make -C "$WS/build" -j"$JOBS" "${fuzz_targets[@]}" > "$WS/build.log" 2>&1 || { tail -n 40 "$WS/build.log"; exit 1; }
+fi
+
+# ---- seeds: test/data's robots, worlds and models, the hostile corpus (test/data/bad) -------------------------
+seeds() {  # seeds TARGET DIR
+  local t="$1" d="$2" f
+  rm -rf "$d"; mkdir -p "$d"
+  case "$t" in
+    urdf) find test/data urdf -name '*.urdf' -size -256k -exec cp -t "$d" --backup=numbered {} + ;;
+    sdf_world) find test/data worlds -name '*.world' -size -256k -exec cp -t "$d" --backup=numbered {} + ;;
+    sdf_model) find test/data models -name '*.sdf' -size -256k -exec cp -t "$d" --backup=numbered {} + ;;
+    spawn)
+      # the request header (name|namespace|frame|pose, then a set_model_state) over each robot
+      for f in $(find test/data -name '*.urdf' -size -64k | head -n 40) $(find test/data models -name '*.sdf' -size -64k); do
+        { printf 'robot|/ns|world|0 0 0.5 0 0 0 1\n1 2 0.5 0 0 0.38 0.92 0.1 0 0 0 0 0.2\n'; cat "$f"; } \
+          > "$d/$(echo "$f" | tr / _)"
+      done ;;
+    ros_control) cp test/fuzz/seeds/ros_control/* "$d/" ;;
+  esac
+}
+
+# libFuzzer's -timeout is wall time, and on a busy machine a timeout may be the load, not the input. Each one is
+# run again alone and measured in CPU time (user + sys, less the process's start): its loading (CAR_FUZZ_NO_STEP=1)
+# must take under the rule's 1 s, and the whole input with its steps under 10 s (the instrumented build is 3-5
+# times slower than a release build; fuzz_common.hpp caps the steps). One that passes both is kept in
+# out/TARGET/load/ and not counted.
+cpu_of() {  # cpu_of [ENV=V] ARGS...: CPU seconds of one run of the target
+  { time env LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS=detect_leaks=0 "$@" > /dev/null 2>&1; } 2>&1 |
+    awk '{print $1 + $2}'
+}
+recheck() {  # recheck TARGET
+  local t="$1" out="$ROOT/test/fuzz/out/$1" f load_s all_s base_s empty
+  TIMEFORMAT='%U %S'
+  compgen -G "$out/timeout-*" > /dev/null || return 0
+  # the process's own start (ASan, libFuzzer's tables, LLVMFuzzerInitialize's warm-up): an empty input's CPU time
+  empty="$(mktemp)"
+  base_s=$(cpu_of CAR_FUZZ_NO_STEP=1 "$BIN/fuzz_$t" -timeout=600 -runs=1 "$empty")
+  rm -f "$empty"
+  for f in "$out"/timeout-*; do
+    [ -e "$f" ] || continue
+    load_s=$(cpu_of CAR_FUZZ_NO_STEP=1 "$BIN/fuzz_$t" -timeout=600 -runs=1 "$f")
+    all_s=$(cpu_of "$BIN/fuzz_$t" -timeout=600 -runs=1 "$f")
+    echo "fuzz: $t: $(basename "$f"): loading ${load_s} CPU s, with the steps ${all_s} CPU s, start ${base_s} CPU s"
+    if awk -v a="$load_s" -v b="$all_s" -v z="$base_s" 'BEGIN { exit !(a - z < 1.0 && b - z < 10.0) }'; then
+      mkdir -p "$out/load"; mv "$f" "$out/load/"
+    fi
+  done
+}
+
+# ---- fuzz, one target at a time on one core --------------------------------------------------------------------
+broken=0
+summary=""
+for t in "${targets[@]}"; do
+  if [ $recheck_only -eq 1 ]; then
+    recheck "$t"
+    found=$(find "$ROOT/test/fuzz/out/$t" -maxdepth 1 -type f 2>/dev/null | wc -l)
+    [ "$found" -eq 0 ] || broken=1
+    summary+="$t $found findings; "
+    continue
+  fi
+  seed="$WS/seeds/$t" corpus="$WS/corpus/$t" out="$ROOT/test/fuzz/out/$t"
+  seeds "$t" "$seed"
+  mkdir -p "$corpus" "$out"
+  [ -d "test/fuzz/corpus/$t" ] && cp -n test/fuzz/corpus/"$t"/* "$corpus/" 2>/dev/null
+  # every input that once broke the rule (test/fuzz/regressions/TARGET/) runs first, each run
+  [ -d "test/fuzz/regressions/$t" ] && cp test/fuzz/regressions/"$t"/* "$seed/" 2>/dev/null
+  dict=(); [ "$t" = ros_control ] || dict=(-dict=test/fuzz/xml.dict)
+  echo "fuzz: $t for $secs s ..."
+  log="$WS/fuzz-$t.log"
+  TIMEFORMAT='%U %S'
+  cpu=$( { time LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=1 \
+      UBSAN_OPTIONS=print_stacktrace=1 nice -n 10 "$BIN/fuzz_$t" -timeout="$TIMEOUT" -rss_limit_mb=2048 -max_len=65536 \
+      -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
+      -max_total_time="$secs" -artifact_prefix="$out/" "${dict[@]}" "$corpus" "$seed" \
+      > "$log" 2>&1; } 2>&1 )
+  cpu=$(echo "$cpu" | awk '{printf "%.0f", $1 + $2}')
+  execs=$(grep -o 'exec/s: [0-9]*\|#[0-9]*' "$log" | grep -o '^#[0-9]*' | tail -n 1 | tr -d '#')
+  recheck "$t"
+  found=$(find "$out" -maxdepth 1 -type f \( -name 'crash-*' -o -name 'timeout-*' -o -name 'oom-*' -o -name 'leak-*' \) | wc -l)
+  [ "$found" -eq 0 ] || { broken=1; grep -m3 -A12 'ERROR\|RULE BROKEN\|ALARM' "$log"; }
+  echo "fuzz: $t: ${cpu} CPU s, ${execs:-?} inputs, $found finding(s) in $out"
+  summary+="$t ${cpu} CPU s ${found} findings; "
+done
+
+# ---- the minimised corpora, kept in the repository as the next run's start ----------------------------------------
+if [ $save -eq 1 ]; then
+  for t in "${targets[@]}"; do
+    rm -rf "test/fuzz/corpus/$t"; mkdir -p "test/fuzz/corpus/$t"
+    LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS=detect_leaks=0 CAR_FUZZ_NO_STEP=1 nice -n 10 "$BIN/fuzz_$t" -merge=1 \
+      -timeout=30 "test/fuzz/corpus/$t" "$WS/corpus/$t" > "$WS/merge-$t.log" 2>&1
+    echo "fuzz: $t: corpus $(ls "test/fuzz/corpus/$t" | wc -l) files, $(du -sh "test/fuzz/corpus/$t" | cut -f1)"
+  done
+fi
+
+# ---- coverage of the loaders over the corpora ------------------------------------------------------------------
+if [ $cov -eq 1 ]; then
+  prof="$WS/prof"; rm -rf "$prof"; mkdir -p "$prof"
+  objs=()
+  for t in "${ALL[@]}"; do
+    [ -d "$WS/corpus/$t" ] || continue
+    LLVM_PROFILE_FILE="$prof/$t.profraw" ASAN_OPTIONS=detect_leaks=0 "$BIN/fuzz_$t" -runs=0 -timeout=5 \
+      "$WS/corpus/$t" "$WS/seeds/$t" > "$WS/cov-$t.log" 2>&1
+    objs+=(-object "$BIN/fuzz_$t")
+  done
+  llvm-profdata-14 merge -sparse "$prof"/*.profraw -o "$prof/all.profdata"
+  # the loaders live in libcar_sim.so: it is the report's first object, the targets the others
+  llvm-cov-14 report "$WS/devel/lib/libcar_sim.so" "${objs[@]}" -instr-profile="$prof/all.profdata" \
+    "$WS/src/car/src/model" "$WS/src/car/src/description" 2>/dev/null | tee "$WS/coverage.txt" | tail -n 20
+fi
+echo "fuzz: ${summary%; }"
+[ $broken -eq 0 ] && echo "fuzz: no input broke the rule" || echo "fuzz: FAILED: inputs that broke the rule are in test/fuzz/out/"
+exit $broken
