@@ -1,7 +1,8 @@
 """A controller for car batch: drive forward, turn away when the lidar sees something closer than 0.6 m.
 
 A controller is f(observation) -> (v [m/s], w [rad/s]); observation: time [s], x, y, yaw (world frame, ground
-truth), v, w (measured), scan (the latest lidar ranges [m], or None before the first scan).
+truth), v, w (measured), scan (the latest lidar ranges [m], or None before the first scan), scan_info (that scan's
+angle_min, angle_increment [rad], range_min, range_max [m], as in sensor_msgs/LaserScan; None before it).
 """
 import math
 

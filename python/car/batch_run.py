@@ -85,7 +85,8 @@ def simulate(sc: dict) -> dict:
             world.set_sensor_active(s['robot'], s['plugin'], True)
     controllers = {r['name']: _load_controller(r['drive']['controller']) for r in robots if r['drive']['controller']}
     state = {r['name']: {'distance': 0.0, 'collisions': 0, 'touching': set(), 'min_obstacle': math.inf,
-                         'scan': None, 'traj': [], 'last': None, 'next_cmd': 0, 'v': 0.0, 'w': 0.0} for r in robots}
+                         'scan': None, 'scan_info': None, 'traj': [], 'last': None, 'next_cmd': 0, 'v': 0.0,
+                         'w': 0.0} for r in robots}
 
     total = int(round(sc['duration'] / dt))
     sample_every = max(1, int(round(1.0 / (SAMPLE_HZ * dt))))
@@ -96,7 +97,7 @@ def simulate(sc: dict) -> dict:
         ms = world.model_state(name)
         return {'time': tick * dt, 'x': ms['position'][0], 'y': ms['position'][1], 'yaw': ms['yaw'],
                 'v': math.hypot(ms['linear'][0], ms['linear'][1]), 'w': ms['angular'][2],
-                'scan': state[name]['scan']}
+                'scan': state[name]['scan'], 'scan_info': state[name]['scan_info']}
 
     tick = 0
     while True:
@@ -139,6 +140,8 @@ def simulate(sc: dict) -> dict:
                 if finite:
                     st['min_obstacle'] = min(st['min_obstacle'], min(finite))
                 st['scan'] = ranges
+                # the geometry a controller needs to tell the ranges' bearings [rad] and validity [m]
+                st['scan_info'] = {k: float(s[k]) for k in ('angle_min', 'angle_increment', 'range_min', 'range_max')}
         if record_every and (tick % record_every == 0 or tick == total):
             for r in robots:
                 ms = world.model_state(r['name'])

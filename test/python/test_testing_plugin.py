@@ -115,3 +115,48 @@ def test_another_seed_gives_other_scans(tmp_path):
     a = _dump(tmp_path, 3, 'a')
     c = _dump(tmp_path, 4, 'c')
     assert [m for m in a if m[0] == '/scan'] != [m for m in c if m[0] == '/scan']
+
+
+WHERE = '''
+import os
+
+def test_it(sim):
+    # sim time passes on this worker's own simulator; the master it talks to is in ROS_MASTER_URI
+    t = sim.run_for(0.5)
+    with open(os.path.join(os.environ['OUT'], os.environ['PYTEST_XDIST_WORKER']), 'w') as f:
+        f.write('%s %s %.3f %d' % (os.environ['ROS_MASTER_URI'], sim.master_uri, t, sim.seed))
+'''
+
+
+def _two_workers(tmp_path, *args):
+    """Two modules, one test each, under -n 2: xdist's load schedule sends fewer than two tests per worker round
+    robin, so each worker runs one module. Returns {worker: [ROS_MASTER_URI, sim.master_uri, sim time, seed]}."""
+    pytest.importorskip('xdist')
+    (tmp_path / 'test_b.py').write_text(HEADER + WHERE)
+    out = tmp_path / 'out'
+    out.mkdir()
+    os.environ['OUT'] = str(out)
+    try:
+        r = run_pytest(tmp_path, WHERE, str(tmp_path / 'test_b.py'), '-n', '2', *args, name='test_a.py')
+    finally:
+        del os.environ['OUT']
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert '2 passed' in r.stdout, r.stdout
+    seen = {p.name: p.read_text().split() for p in out.iterdir()}
+    assert sorted(seen) == ['gw0', 'gw1'], seen
+    return seen
+
+
+def test_two_xdist_workers_get_their_own_masters(tmp_path):
+    seen = _two_workers(tmp_path)
+    (env0, own0, t0, _), (env1, own1, t1, _) = seen['gw0'], seen['gw1']
+    # each worker's tests (and the processes they start) see the master that worker started
+    assert env0 == own0 and env1 == own1, seen
+    assert env0 != env1, 'both workers used %s' % env0
+    assert float(t0) >= 0.5 and float(t1) >= 0.5, seen
+
+
+def test_xdist_workers_share_the_controllers_random_seed(tmp_path):
+    # --car-seed random is drawn once, by the controller: the failure report's replay command holds for every worker
+    seen = _two_workers(tmp_path, '--car-seed', 'random')
+    assert seen['gw0'][3] == seen['gw1'][3], seen

@@ -4,5 +4,5 @@ As a pytest plug-in (entry point `car.testing`, or `-p car.testing`, or `pytest_
 the `sim` fixture, options --car-seed / --car-scope / --car-use-master / --car-artifacts / --car-rtf and the
 `car_sim` marker. Outside pytest: `car.testing.sim.Sim` and, for rostest nodes, `car.testing.rostest`.
 """
-from car.testing.plugin import (_car_sim_module, pytest_addoption, pytest_configure,  # noqa: F401
+from car.testing.plugin import (_car_sim_module, pytest_addoption, pytest_configure, pytest_configure_node,  # noqa: F401,E501
                                 pytest_report_header, pytest_runtest_makereport, pytest_unconfigure, sim)

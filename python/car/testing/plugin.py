@@ -35,6 +35,8 @@ def pytest_configure(config):
                    'nodes=[argv, ...], rtf=None): the simulator of this module (or test, with --car-scope function); relative paths '
                    'are taken from the test file\'s folder')
     raw = config.getoption('car_seed') or config.getini('car_seed') or '0'
+    # a pytest-xdist worker takes the seed its controller chose (one "random" seed for the whole run)
+    raw = getattr(config, 'workerinput', {}).get('car_seed', raw)
     if str(raw).lower() == 'random':
         seed = int.from_bytes(os.urandom(4), 'little') & 0x7fffffff
     else:
@@ -43,6 +45,12 @@ def pytest_configure(config):
         except ValueError:
             raise pytest.UsageError('--car-seed: an integer or "random", got %r' % raw)
     setattr(config, _SEED_KEY, seed)
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_configure_node(node):
+    """pytest-xdist (controller side): every worker gets the controller's seed."""
+    node.workerinput['car_seed'] = str(getattr(node.config, _SEED_KEY))
 
 
 def pytest_report_header(config):
