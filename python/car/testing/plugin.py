@@ -34,6 +34,8 @@ def pytest_configure(config):
         'markers', 'car_sim(world=None, robot=None, name="robot", pose=(x, y, yaw), launch=None, launch_args=None, '
                    'nodes=[argv, ...], rtf=None): the simulator of this module (or test, with --car-scope function); relative paths '
                    'are taken from the test file\'s folder')
+    # rospy 1.15's threads call the deprecated notifyAll() thousands of times a run: not the user's to fix
+    config.addinivalue_line('filterwarnings', 'ignore:notifyAll\\(\\) is deprecated:DeprecationWarning')
     raw = config.getoption('car_seed') or config.getini('car_seed') or '0'
     # a pytest-xdist worker takes the seed its controller chose (one "random" seed for the whole run)
     raw = getattr(config, 'workerinput', {}).get('car_seed', raw)
