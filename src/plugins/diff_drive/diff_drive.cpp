@@ -50,6 +50,14 @@ double rate_limit(double current, double target, double max_step) {
   return current + std::clamp(target - current, -max_step, max_step);
 }
 
+void check_wheel_length(ResolveContext& ctx, const char* key) {
+  const double v = ctx.config().number(key);
+  if (v == 0.0) ctx.fail(key, "must not be 0 (the drive divides by it)");
+  if (v < 0.0)
+    ctx.warn(Severity::Warning, "wheel-negative", key,
+             "is negative (" + ctx.config().text(key) + " m): the wheels turn the other way, as in Gazebo 11");
+}
+
 void EncoderOdometry::integrate(double sl, double sr, double separation, double dt) {
   const double ssum = sl + sr;
   const double sdiff = sr - sl;
@@ -168,16 +176,6 @@ class DiffDrive : public Plugin, public TwistDrive {
   bool update_due_ = false;
 };
 
-// A wheel length: 0 is refused (the drive divides by it); a negative one is what Gazebo 11 loads too (the wheels
-// turn the other way): a warning (docs/COMPAT-validation.md).
-void wheel_length(ResolveContext& ctx, const char* key) {
-  const double v = ctx.config().number(key);
-  if (v == 0.0) ctx.fail(key, "must not be 0 (the drive divides by it)");
-  if (v < 0.0)
-    ctx.warn(Severity::Warning, "wheel-negative", key,
-             "is negative (" + ctx.config().text(key) + " m): the wheels turn the other way, as in Gazebo 11");
-}
-
 void finish(ResolveContext& ctx) {
   const PluginConfig& c = ctx.config();
   for (const char* key : {"leftJoint", "rightJoint"}) {
@@ -187,8 +185,8 @@ void finish(ResolveContext& ctx) {
       ctx.fail(key, "joint '" + jn + "' not found in the model (plug-in '" + c.name + "', " + c.filename + ")");
     if (j->type == JointType::Fixed) ctx.fail(key, "joint '" + jn + "' is fixed; a drive wheel needs a continuous joint");
   }
-  wheel_length(ctx, "wheelSeparation");
-  wheel_length(ctx, "wheelDiameter");
+  check_wheel_length(ctx, "wheelSeparation");
+  check_wheel_length(ctx, "wheelDiameter");
   if (c.number("wheelTorque") < 0) ctx.fail("wheelTorque", "must be >= 0");
   if (c.number("wheelAcceleration") < 0) ctx.fail("wheelAcceleration", "must be >= 0 (0 = unlimited)");
   if (c.number("updateRate") < 0) ctx.fail("updateRate", "must be >= 0");

@@ -39,6 +39,10 @@ void wheel_speeds(double v, double w, double separation, double* left, double* r
 // Moves current toward target by at most max_step (max_step <= 0: jump to target).
 double rate_limit(double current, double target, double max_step);
 
+// The drives' rule for a wheel length key [m] (separation, diameter): 0 is refused (the drive divides by it); a
+// negative one is what Gazebo 11 loads too (the wheels turn the other way), so a warning (docs/COMPAT-validation.md).
+void check_wheel_length(ResolveContext& ctx, const char* key);
+
 // Planar pose integrated from wheel travel, as the plug-in's encoder odometry does.
 struct EncoderOdometry {
   double x = 0.0, y = 0.0, theta = 0.0;  // [m], [m], [rad], odometry frame

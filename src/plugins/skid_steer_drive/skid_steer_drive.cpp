@@ -92,16 +92,6 @@ class SkidSteer : public Plugin, public TwistDrive {
   bool update_due_ = false;
 };
 
-// A wheel length: 0 is refused (the drive divides by it); a negative one is what Gazebo 11 loads too (the wheels
-// turn the other way): a warning (docs/COMPAT-validation.md).
-void wheel_length(ResolveContext& ctx, const char* key) {
-  const double v = ctx.config().number(key);
-  if (v == 0.0) ctx.fail(key, "must not be 0 (the drive divides by it)");
-  if (v < 0.0)
-    ctx.warn(Severity::Warning, "wheel-negative", key,
-             "is negative (" + ctx.config().text(key) + " m): the wheels turn the other way, as in Gazebo 11");
-}
-
 void finish(ResolveContext& ctx) {
   const PluginConfig& c = ctx.config();
   for (const char* key : kJointKeys) {
@@ -110,8 +100,8 @@ void finish(ResolveContext& ctx) {
     if (!j) ctx.fail(key, "joint '" + jn + "' not found in the model (plug-in '" + c.name + "', " + c.filename + ")");
     if (j->type == JointType::Fixed) ctx.fail(key, "joint '" + jn + "' is fixed; a drive wheel needs a continuous joint");
   }
-  wheel_length(ctx, "wheelSeparation");
-  wheel_length(ctx, "wheelDiameter");
+  check_wheel_length(ctx, "wheelSeparation");
+  check_wheel_length(ctx, "wheelDiameter");
   if (c.number("torque") < 0) ctx.fail("torque", "must be >= 0");
   if (c.number("updateRate") < 0) ctx.fail("updateRate", "must be >= 0");
 }

@@ -129,16 +129,6 @@ class Tricycle : public Plugin, public TwistDrive {
   uint64_t last_update_tick_ = 0;
 };
 
-// A wheel length: 0 is refused (the drive divides by it); a negative one is what Gazebo 11 loads too (the wheels
-// turn the other way): a warning (docs/COMPAT-validation.md).
-void wheel_length(ResolveContext& ctx, const char* key) {
-  const double v = ctx.config().number(key);
-  if (v == 0.0) ctx.fail(key, "must not be 0 (the drive divides by it)");
-  if (v < 0.0)
-    ctx.warn(Severity::Warning, "wheel-negative", key,
-             "is negative (" + ctx.config().text(key) + " m): the wheels turn the other way, as in Gazebo 11");
-}
-
 void finish(ResolveContext& ctx) {
   const PluginConfig& c = ctx.config();
   for (const char* key : {"steeringJoint", "actuatedWheelJoint", "encoderWheelLeftJoint", "encoderWheelRightJoint"}) {
@@ -148,7 +138,7 @@ void finish(ResolveContext& ctx) {
     if (j->type == JointType::Fixed) ctx.fail(key, "joint '" + jn + "' is fixed; it must move");
   }
   for (const char* key : {"actuatedWheelDiameter", "encoderWheelDiameter", "encoderWheelSeparation"})
-    wheel_length(ctx, key);
+    check_wheel_length(ctx, key);
   for (const char* key : {"wheelTorque", "updateRate", "wheelAcceleration", "wheelSpeedTolerance", "steeringSpeed",
                           "steeringAngleTolerance"})
     if (c.number(key) < 0) ctx.fail(key, "must be >= 0");
