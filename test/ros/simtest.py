@@ -8,6 +8,9 @@ from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from std_srvs.srv import Empty
 
+# the same rule car.testing gives users (one place for it)
+from car.testing.waits import receive_all  # noqa: F401
+
 
 class Recorder:
     """Keeps every message of a topic, in arrival order, with its header stamp in seconds."""
@@ -75,18 +78,6 @@ class Recorder:
                     return list(self.msgs)
             time.sleep(0.01)
         raise AssertionError('no message at sim time %.3f within %.0f s' % (t, timeout))
-
-
-def receive_all(sub):
-    """Makes the rospy Subscriber sub receive every message of its topic, and returns it. rospy gives a node's
-    subscribers of one topic one shared connection, bounded by the queue_size it was made with, and a later
-    queue_size=None does not lift that bound. Under use_sim_time rospy's own /clock subscriber
-    (rospy.impl.simtime) made /clock's connection with queue_size=1: messages read from the socket together
-    (whenever this process is slow to read, a busy machine) are cut to the newest."""
-    sub.impl.set_queue_size(None)
-    for connection in list(sub.impl.connections):
-        connection.protocol.queue_size = None
-    return sub
 
 
 def wait_publisher(sub, node='/gazebo', timeout=300.0):

@@ -46,7 +46,11 @@ def message_class(msg_type):
 
 
 def receive_all(sub):
-    """Lifts rospy's per-connection queue bound on sub so no message is dropped (see test/ros/simtest.py)."""
+    """Makes the rospy Subscriber sub receive every message of its topic, and returns it. rospy gives a node's
+    subscribers of one topic one shared connection, bounded by the queue_size it was made with, and a later
+    queue_size=None does not lift that bound. Under use_sim_time rospy's own /clock subscriber
+    (rospy.impl.simtime) made /clock's connection with queue_size=1: messages read from the socket together
+    (whenever this process is slow to read, a busy machine) are cut to the newest."""
     sub.impl.set_queue_size(None)
     for connection in list(sub.impl.connections):
         connection.protocol.queue_size = None
