@@ -55,6 +55,25 @@ const char* to_string(JointType t) {
   return "?";
 }
 
+// Control characters written as \xNN (newline and tab kept): what() is a C string, so a NUL in a name (a ROS
+// string may hold one, found by test/fuzz/fuzz_spawn) would cut the message short.
+static std::string printable(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char ch : text) {
+    const auto c = static_cast<unsigned char>(ch);
+    if ((c < 0x20 && c != '\n' && c != '\t') || c == 0x7f) {
+      static const char* kHex = "0123456789abcdef";
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 0xf];
+    } else {
+      out += ch;
+    }
+  }
+  return out;
+}
+
 static std::string format_error(const std::string& file, int line, const std::string& element,
                                 const std::string& reason) {
   std::ostringstream os;
@@ -62,19 +81,19 @@ static std::string format_error(const std::string& file, int line, const std::st
   if (line > 0) os << ":" << line;
   if (!element.empty()) os << ": " << element;
   os << ": " << reason;
-  return os.str();
+  return printable(os.str());
 }
 
 // An error always names its source: a document given without a name (an empty SpawnModel model_name, found by
 // test/fuzz/fuzz_spawn) is "<string>", the loaders' default name, not "" (": malformed XML: ...").
-static std::string source_or_default(std::string file) { return file.empty() ? "<string>" : file; }
+static std::string source_or_default(const std::string& file) { return file.empty() ? "<string>" : printable(file); }
 
 LoadError::LoadError(std::string file, int line, std::string element, std::string reason)
     : std::runtime_error(format_error(source_or_default(file), line, element, reason)),
-      file_(source_or_default(std::move(file))),
+      file_(source_or_default(file)),
       line_(line),
-      element_(std::move(element)),
-      reason_(std::move(reason)) {}
+      element_(printable(element)),
+      reason_(printable(reason)) {}
 
 const std::string* find_param(const ParamList& params, const std::string& key) {
   const std::string* found = nullptr;

@@ -176,6 +176,17 @@ TEST(ModelErrors, AnUnnamedDocumentIsNamedStringInItsError) {
   }
 }
 
+TEST(ModelErrors, ANulInTheDocumentsNameIsWrittenOutNotCutAt) {
+  // a SpawnModel model_name may hold a NUL (test/fuzz/fuzz_spawn): the message goes on past it
+  try {
+    load_urdf_string("", std::string("r\0bot", 5));
+    FAIL() << "no error";
+  } catch (const LoadError& e) {
+    EXPECT_EQ(e.file(), "r\\x00bot");
+    EXPECT_STREQ(e.what(), "r\\x00bot: malformed XML: empty document");
+  }
+}
+
 TEST(ModelErrors, ZeroMassNamesTheLink) {
   try {
     load_urdf_file(data_path("bad/zero_mass.urdf"));
