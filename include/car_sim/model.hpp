@@ -223,8 +223,8 @@ struct LoadOptions {
 // The spawn service's namespace rule (gazebo_ros_api_plugin walkChildAddRobotNamespace): with a non-empty
 // robot_namespace, every <plugin> (robot-level and in sensors) that has no <robotNamespace> gets one with it;
 // an explicit one is kept, an empty one too (each plug-in file reads it by its own rule: plugin_robot_namespace
-// in car_sim/plugins.hpp; model_name is not used here). See docs/COMPAT-spawn.md.
-void apply_robot_namespace(RobotModel* model, const std::string& robot_namespace, const std::string& model_name);
+// in car_sim/plugins.hpp). See docs/COMPAT-spawn.md.
+void apply_robot_namespace(RobotModel* model, const std::string& robot_namespace);
 
 // Loads a URDF document. Throws LoadError naming source, line (where known), element and reason.
 RobotModel load_urdf_string(const std::string& xml, const std::string& source_name = "<string>",

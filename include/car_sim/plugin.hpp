@@ -58,8 +58,6 @@ class Schedule {
   // After a due tick: the next one (never in the past, so a pause in activity gives no burst).
   void advance(uint64_t tick);
   void restart(uint64_t start_tick);
-  uint64_t next_tick() const { return next_; }
-  double period_ticks() const { return static_cast<double>(num_) / static_cast<double>(den_); }
 
  private:
   uint64_t num_ = 1, den_ = 1;  // period [ticks] = num / den
@@ -129,8 +127,6 @@ class RobotHandle {
   virtual Wrench applied_wrench(const std::string& link) const = 0;
   // Sets the root's velocity, world frame: linear [m/s] of the root frame's origin, angular [rad/s]. The pose stays.
   virtual void set_root_velocity(const Eigen::Vector3d& linear, const Eigen::Vector3d& angular) = 0;
-  // Moves the root frame to a world pose; velocities stay.
-  virtual void set_root_pose(const Eigen::Isometry3d& pose) = 0;
   // Sets a joint's position [rad] or [m] and its velocity to 0.
   virtual void set_joint_position(int joint, double position) = 0;
   // Measure the joint's reaction wrench from now on (in configure). Throws for a joint that is not moving.

@@ -24,7 +24,6 @@ struct SdfRobot {
 // Throws LoadError naming source, line, element and reason.
 SdfRobot load_sdf_model_string(const std::string& xml, const std::string& source_name = "<string>",
                                const LoadOptions& options = LoadOptions(), const std::string& base_dir = "");
-SdfRobot load_sdf_model_file(const std::string& path, const LoadOptions& options = LoadOptions());
 
 // True when the text's root element is <sdf> (gazebo_ros isSDF); false for <robot> and anything else.
 bool is_sdf_document(const std::string& xml);

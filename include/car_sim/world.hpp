@@ -35,7 +35,6 @@ struct PluginInfo {
   double rate = 0.0;            // [Hz], 0 = every step
   bool lazy = false;            // computed only while active (someone listens)
 };
-using SensorInfo = PluginInfo;
 
 // What a spawned robot is, for the skins: its model, resolved plug-ins and namespace.
 struct RobotInfo {

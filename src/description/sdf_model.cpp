@@ -463,13 +463,4 @@ SdfRobot load_sdf_model_string(const std::string& xml, const std::string& source
   return r;
 }
 
-SdfRobot load_sdf_model_file(const std::string& path, const LoadOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw LoadError(path, 0, "", "cannot open file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string dir = path.find('/') == std::string::npos ? "." : path.substr(0, path.rfind('/'));
-  return load_sdf_model_string(ss.str(), path, options, dir);
-}
-
 }  // namespace car_sim

@@ -18,7 +18,7 @@ bool has_namespace(const PluginSpec& p) {
 
 }  // namespace
 
-void apply_robot_namespace(RobotModel* model, const std::string& robot_namespace, const std::string& model_name) {
+void apply_robot_namespace(RobotModel* model, const std::string& robot_namespace) {
   // walkChildAddRobotNamespace runs only for a non-empty namespace and only adds where none is written.
   if (!robot_namespace.empty()) {
     for (auto& p : model->plugins)
@@ -28,7 +28,6 @@ void apply_robot_namespace(RobotModel* model, const std::string& robot_namespace
         if (!has_namespace(p)) p.params.emplace_back("robotNamespace", robot_namespace);
   }
   // An empty <robotNamespace> stays empty: each plug-in file reads it by its own rule (plugin_robot_namespace).
-  (void)model_name;
 }
 
 bool namespace_rule(const std::string& filename, NamespaceRule* rule) {

@@ -86,11 +86,6 @@ struct World::Impl : WorldAccess {
     void set_root_velocity(const Eigen::Vector3d& linear, const Eigen::Vector3d& angular) override {
       body->set_root_velocity(linear, angular);
     }
-    void set_root_pose(const Eigen::Isometry3d& pose) override {
-      ModelState s = body->root_state();
-      s.pose = pose;
-      body->set_root_state(s);
-    }
     void set_joint_position(int j, double position) override { body->set_joint_position(j, position); }
     std::vector<int> wrench_claims;  // joints with a reaction sensor, re-made after a rebuild
     void enable_joint_wrench(int j) override {
@@ -235,7 +230,7 @@ void World::spawn(const RobotModel& model, const std::string& name, const Eigen:
   r->info.model = model;
   r->info.spawn_pose = pose;
   // gazebo_ros's spawn: plug-ins without <robotNamespace> get the spawn namespace (docs/COMPAT-spawn.md)
-  apply_robot_namespace(&r->info.model, robot_namespace, name);
+  apply_robot_namespace(&r->info.model, robot_namespace);
   load_meshes(&r->info.model, source_dir(model.source));
   r->info.config = resolve_plugins(r->info.model);
   for (const auto& c : r->info.config.plugins) r->plugins.push_back(impl_->make_instance(*r, c));

@@ -53,7 +53,7 @@ ModelConfig bot(const std::string& ns_element, const std::string& spawn_ns) {
   for (size_t i = xml.find("NS"); i != std::string::npos; i = xml.find("NS", i + ns_element.size()))
     xml.replace(i, 2, ns_element);
   RobotModel m = load_urdf_string(xml, "bot.urdf");
-  apply_robot_namespace(&m, spawn_ns, "bot");
+  apply_robot_namespace(&m, spawn_ns);
   return resolve_plugins(m);
 }
 

@@ -34,7 +34,7 @@ std::string ns_of(const PluginSpec& p) {
 TEST(SpawnNamespace, RootNamespaceIsAddedWhereNoneIsWritten) {
   // spawn_model at the root: -robot_namespace defaults to rospy.get_namespace() = "/"
   RobotModel m = robot("", "");
-  apply_robot_namespace(&m, "/", "mybot");
+  apply_robot_namespace(&m, "/");
   EXPECT_EQ(ns_of(m.plugins[0]), "/");
   EXPECT_EQ(ns_of(m.sensors[0].plugins[0]), "/");
 }
@@ -42,14 +42,14 @@ TEST(SpawnNamespace, RootNamespaceIsAddedWhereNoneIsWritten) {
 TEST(SpawnNamespace, GroupNamespaceIsAddedWhereNoneIsWritten) {
   // inside <group ns="r1">: rospy.get_namespace() = "/r1/"
   RobotModel m = robot("", "");
-  apply_robot_namespace(&m, "/r1/", "mybot");
+  apply_robot_namespace(&m, "/r1/");
   EXPECT_EQ(ns_of(m.plugins[0]), "/r1/");
   EXPECT_EQ(ns_of(m.sensors[0].plugins[0]), "/r1/");
 }
 
 TEST(SpawnNamespace, ExplicitNamespaceIsKept) {
   RobotModel m = robot("<robotNamespace>/left</robotNamespace>", "<robotNamespace>right</robotNamespace>");
-  apply_robot_namespace(&m, "/r1/", "mybot");
+  apply_robot_namespace(&m, "/r1/");
   EXPECT_EQ(ns_of(m.plugins[0]), "/left");
   EXPECT_EQ(ns_of(m.sensors[0].plugins[0]), "right");
 }
@@ -57,7 +57,7 @@ TEST(SpawnNamespace, ExplicitNamespaceIsKept) {
 TEST(SpawnNamespace, EmptySpawnNamespaceAddsNothing) {
   // the service called with robot_namespace "" (not spawn_model's default): plug-ins fall back on their own
   RobotModel m = robot("", "");
-  apply_robot_namespace(&m, "", "mybot");
+  apply_robot_namespace(&m, "");
   EXPECT_EQ(ns_of(m.plugins[0]), "<none>");
   EXPECT_EQ(ns_of(m.sensors[0].plugins[0]), "<none>");
 }
@@ -66,7 +66,7 @@ TEST(SpawnNamespace, ExplicitlyEmptyNamespaceIsKept) {
   // the spawn neither replaces nor fills an empty value: each file reads it by its own rule when it loads
   // (imu_sensor: "" + "/" = global; diff_drive: the model name; test_plugin_namespace.cpp)
   RobotModel m = robot("<robotNamespace></robotNamespace>", "<robotNamespace></robotNamespace>");
-  apply_robot_namespace(&m, "/", "mybot");
+  apply_robot_namespace(&m, "/");
   EXPECT_EQ(ns_of(m.plugins[0]), "");
   EXPECT_EQ(ns_of(m.sensors[0].plugins[0]), "");
 }

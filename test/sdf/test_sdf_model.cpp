@@ -275,14 +275,14 @@ TEST(SdfModel, PluginKindsResolveThroughTheRegistry) {
 // Namespace rules (docs/COMPAT-sdf.md table), plug-in and sensor alike.
 TEST(SdfNamespace, AbsentIsInjectedAtSpawn) {
   SdfRobot r = load_sdf_model_string(robot_with("", ""));
-  apply_robot_namespace(&r.model, "/r1/", "bot");
+  apply_robot_namespace(&r.model, "/r1/");
   EXPECT_EQ(ns_of(r.model.plugins[0]), "/r1/");
   EXPECT_EQ(ns_of(r.model.sensors[0].plugins[0]), "/r1/");
 }
 
 TEST(SdfNamespace, EmptyIsReadByEachFilesRule) {
   SdfRobot r = load_sdf_model_string(robot_with("<robotNamespace></robotNamespace>", "<robotNamespace></robotNamespace>"));
-  apply_robot_namespace(&r.model, "/r1/", "bot");
+  apply_robot_namespace(&r.model, "/r1/");
   // the spawn keeps an empty value; each file reads it (docs/COMPAT-plugins.md "Namespaces"): laser
   // (GetRobotNamespace) -> the model name, p3d ("" + "/") -> global
   EXPECT_EQ(ns_of(r.model.sensors[0].plugins[0]), "");
@@ -300,7 +300,7 @@ TEST(SdfNamespace, EmptyIsReadByEachFilesRule) {
 TEST(SdfNamespace, ExplicitIsKept) {
   SdfRobot r = load_sdf_model_string(robot_with("<robotNamespace>/left</robotNamespace>",
                                                 "<robotNamespace>right</robotNamespace>"));
-  apply_robot_namespace(&r.model, "/r1/", "bot");
+  apply_robot_namespace(&r.model, "/r1/");
   EXPECT_EQ(ns_of(r.model.plugins[0]), "/left");
   EXPECT_EQ(ns_of(r.model.sensors[0].plugins[0]), "right");
 }
