@@ -21,9 +21,9 @@ class PlanarMoveAdapter : public Adapter {
     drive_ = dynamic_cast<car_sim::TwistDrive*>(node.world().plugin(robot.name, p.config.name));
     const std::string ns = plugin_namespace(p.config, robot.name);
     // tf::resolve(tf::getPrefixParam) as upstream: tf_prefix from the plug-in's namespace (docs/COMPAT-spawn.md 4)
-    prefix_ = tf_prefix_param(ns);
-    odom_frame_ = resolve_tf(prefix_, p.config.text("odometryFrame"));
-    base_frame_ = resolve_tf(prefix_, p.config.text("robotBaseFrame"));
+    const std::string prefix = tf_prefix_param(ns);
+    odom_frame_ = resolve_tf(prefix, p.config.text("odometryFrame"));
+    base_frame_ = resolve_tf(prefix, p.config.text("robotBaseFrame"));
     const std::string cmd = topic_in(ns, p.config.text("commandTopic"));
     const std::string odom = topic_in(ns, p.config.text("odometryTopic"));
     cmd_vel_ = node.nh().subscribe<geometry_msgs::Twist>(
@@ -69,7 +69,6 @@ class PlanarMoveAdapter : public Adapter {
   }
 
   std::string robot_, odom_frame_, base_frame_;
-  std::string prefix_;  // tf_prefix ("" = none)
   car_sim::TwistDrive* drive_ = nullptr;
   ros::Subscriber cmd_vel_;
   ros::Publisher odom_;

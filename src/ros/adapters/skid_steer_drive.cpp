@@ -21,9 +21,9 @@ class SkidSteerAdapter : public Adapter {
     drive_ = dynamic_cast<car_sim::TwistDrive*>(node.world().plugin(robot.name, p.config.name));
     const std::string ns = plugin_namespace(p.config, robot.name);
     // tf::resolve(tf::getPrefixParam) as upstream: tf_prefix from the plug-in's namespace (docs/COMPAT-spawn.md 4)
-    prefix_ = tf_prefix_param(ns);
-    odom_frame_ = resolve_tf(prefix_, p.config.text("odometryFrame"));
-    base_frame_ = resolve_tf(prefix_, p.config.text("robotBaseFrame"));
+    const std::string prefix = tf_prefix_param(ns);
+    odom_frame_ = resolve_tf(prefix, p.config.text("odometryFrame"));
+    base_frame_ = resolve_tf(prefix, p.config.text("robotBaseFrame"));
     broadcast_tf_ = p.config.flag("broadcastTF");
     cov_[0] = p.config.number("covariance_x");
     cov_[1] = p.config.number("covariance_y");
@@ -76,7 +76,6 @@ class SkidSteerAdapter : public Adapter {
   }
 
   std::string robot_, odom_frame_, base_frame_;
-  std::string prefix_;  // tf_prefix ("" = none)
   bool broadcast_tf_ = false;
   double cov_[6] = {0, 0, 0, 0, 0, 0};
   car_sim::TwistDrive* drive_ = nullptr;
