@@ -27,6 +27,11 @@ std::string num(double v) {
   return os.str();
 }
 
+// What car does with a degenerate shape (a warning, as Gazebo 11 loads it), by the element's kind.
+std::string left_out(bool visual) {
+  return visual ? "the visual is not drawn" : "the collision is left out of the collision world (the model is simulated)";
+}
+
 // One finite number: strtod over the whole text (an underflow to a denormal or 0 is fine, an overflow is not).
 bool finite_number(const std::string& tok, double* out) {
   if (tok.empty()) return false;
@@ -138,11 +143,9 @@ class UrdfCheck {
     return true;
   }
 
-  // What car does with a degenerate shape, by the element's kind.
+  // A URDF shape's kind from where it is: under <visual> or <collision>.
   static std::string left_out(const std::string& where) {
-    return where.find("/visual[") != std::string::npos
-               ? "the visual is not drawn"
-               : "the collision is left out of the collision world (the model is simulated)";
+    return car_sim::detail::left_out(where.find("/visual[") != std::string::npos);
   }
 
   void geometry(const tinyxml2::XMLElement* shape_parent, const std::string& where) {
@@ -409,9 +412,7 @@ bool check_shape(WorldDescription* d, const Shape& s, const std::string& where, 
     if (!(v > 0.0)) {
       ok = false;
       world_warn(d, "shape-size", where,
-                 std::string(what) + " " + num(v) + " m is not > 0; " +
-                     (visual ? "the visual is not drawn"
-                             : "the collision is left out of the collision world (the model is simulated)"));
+                 std::string(what) + " " + num(v) + " m is not > 0; " + left_out(visual));
     } else if (v > limits::kLengthMax) {
       world_warn(d, "length-range", where, std::string(what) + " " + num(v) + " m is above " +
                                                num(limits::kLengthMax) + " m (the ray scene works in single precision)");
@@ -436,9 +437,7 @@ bool check_shape(WorldDescription* d, const Shape& s, const std::string& where, 
       if (s.mesh_scale.cwiseAbs().minCoeff() == 0.0) {
         ok = false;
         world_warn(d, "shape-size", where,
-                   std::string("mesh scale has a component 0; ") +
-                       (visual ? "the visual is not drawn"
-                               : "the collision is left out of the collision world (the model is simulated)"));
+                   std::string("mesh scale has a component 0; ") + left_out(visual));
       }
       break;
   }
