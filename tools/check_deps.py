@@ -135,7 +135,7 @@ CMAKE = {
 }
 
 # Python files that are not code of a catkin package's own (test helpers import each other by name).
-SKIP_DIRS = {'.git', '.ws', '.venv', '__pycache__', 'bench/out', 'node_modules'}
+SKIP_DIRS = {'.git', '.ws', '.venv', '__pycache__', 'bench/out', 'car/bench/out', 'node_modules'}
 
 IMPORT_RE = re.compile(r'^\s*(?:from\s+([A-Za-z_][\w.]*)\s+import|import\s+([A-Za-z_][\w.]*(?:\s*,\s*[A-Za-z_][\w.]*)*))')
 INCLUDE_RE = re.compile(r'^\s*#\s*include\s*<([^>]+)>')
@@ -222,8 +222,9 @@ def check(root):
     gaps = []
     packages = catkin_packages(root)
     deb = setup_packages(root)
-    req = pinned(root, 'requirements.txt')
-    bench_req = pinned(root, 'bench/requirements.txt')
+    # car's pins live in car/ (its package folder); a package at the root (the tests' fixtures) has them there
+    req = pinned(root, 'requirements.txt') | pinned(root, 'car/requirements.txt')
+    bench_req = pinned(root, 'bench/requirements.txt') | pinned(root, 'car/bench/requirements.txt')
     local = local_modules(root) | {name for name, _ in packages.values()}
     stdlib = set(sys.stdlib_module_names)
 
@@ -252,7 +253,7 @@ def check(root):
                     need(path, what, *PY_DEBIAN[top])
                 elif top in PY_PYPI:
                     dist = PY_PYPI[top].lower()
-                    ok = dist in req or (rel.startswith('bench' + os.sep) and dist in bench_req)
+                    ok = dist in req or (rel.startswith(('bench' + os.sep, os.path.join('car', 'bench') + os.sep)) and dist in bench_req)
                     if not ok:
                         gaps.append('%s: %s (PyPI %s), which no requirements file it may use pins' % (rel, what, dist))
                 else:
@@ -274,7 +275,7 @@ def check(root):
                 pkg = inc.split('/')[0]
                 if pkg in local:
                     continue  # a message header of a catkin package in this repository, or our own headers
-                if os.path.exists(os.path.join(root, 'include', pkg)) or inc.startswith(('car_sim/', 'car/')):
+                if os.path.exists(os.path.join(root, 'include', pkg)) or os.path.exists(os.path.join(root, 'car', 'include', pkg)) or inc.startswith(('car_sim/', 'car/')):
                     continue
                 gaps.append('%s: line %d includes <%s>, which is in no table of tools/check_deps.py; add it' %
                             (os.path.relpath(path, root), n, inc))

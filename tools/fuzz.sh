@@ -13,9 +13,9 @@
 # that breaks it (saved under test/fuzz/out/TARGET/).
 set -uo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-cd "$ROOT"
+cd "$ROOT/car"
 # shellcheck source=tools/sanitizers/workspace.sh
-source tools/sanitizers/workspace.sh
+source "$ROOT/tools/sanitizers/workspace.sh"
 ensure_clang || { echo "sanitizers: could not install clang 14"; exit 1; }
 ALL=(urdf sdf_world sdf_model spawn ros_control)
 secs=600 cov=0 build=1 recheck_only=0 save=0 targets=()
@@ -80,7 +80,7 @@ cpu_of() {  # cpu_of [ENV=V] ARGS...: CPU seconds of one run of the target
     awk '{print $1 + $2}'
 }
 recheck() {  # recheck TARGET
-  local t="$1" out="$ROOT/test/fuzz/out/$1" f load_s all_s base_s empty
+  local t="$1" out="$ROOT/car/test/fuzz/out/$1" f load_s all_s base_s empty
   TIMEFORMAT='%U %S'
   compgen -G "$out/timeout-*" > /dev/null || return 0
   # the process's own start (ASan, libFuzzer's tables, LLVMFuzzerInitialize's warm-up): an empty input's CPU time
@@ -104,12 +104,12 @@ summary=""
 for t in "${targets[@]}"; do
   if [ $recheck_only -eq 1 ]; then
     recheck "$t"
-    found=$(find "$ROOT/test/fuzz/out/$t" -maxdepth 1 -type f 2>/dev/null | wc -l)
+    found=$(find "$ROOT/car/test/fuzz/out/$t" -maxdepth 1 -type f 2>/dev/null | wc -l)
     [ "$found" -eq 0 ] || broken=1
     summary+="$t $found findings; "
     continue
   fi
-  seed="$WS/seeds/$t" corpus="$WS/corpus/$t" out="$ROOT/test/fuzz/out/$t"
+  seed="$WS/seeds/$t" corpus="$WS/corpus/$t" out="$ROOT/car/test/fuzz/out/$t"
   seeds "$t" "$seed"
   mkdir -p "$corpus" "$out"
   [ -d "test/fuzz/corpus/$t" ] && cp -n test/fuzz/corpus/"$t"/* "$corpus/" 2>/dev/null

@@ -14,9 +14,9 @@
 # third-party code only, are in tools/sanitizers/*.supp, each with its reason.
 set -uo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-cd "$ROOT"
+cd "$ROOT/car"
 # shellcheck source=tools/sanitizers/workspace.sh
-source tools/sanitizers/workspace.sh
+source "$ROOT/tools/sanitizers/workspace.sh"
 ensure_clang || { echo "sanitizers: could not install clang 14"; exit 1; }
 JOBS="${JOBS:-2}"
 OUT="$ROOT/.ws-san-reports"
@@ -75,7 +75,7 @@ asan_gtest() {
   LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS="log_path=$d/asan:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1" \
   LSAN_OPTIONS="suppressions=$SUPP/lsan.supp:print_suppressions=0" \
   UBSAN_OPTIONS="log_path=$d/ubsan:print_stacktrace=1:halt_on_error=1:suppressions=$SUPP/ubsan.supp" \
-    .ws-asan/devel/lib/car/test_core --gtest_brief=1 > "$d.log" 2>&1
+    "$ROOT/.ws-asan/devel/lib/car/test_core" --gtest_brief=1 > "$d.log" 2>&1
   local rc=$?
   tail -n 5 "$d.log"
   reports "$d" || rc=1
@@ -92,7 +92,7 @@ asan_pytest() {
   # CPython does not free its interned objects and module state at exit (every run would report them; leaks in
   # car's own code are checked by the gtests above). PYTHONMALLOC=malloc: objects go through ASan's malloc, not
   # pymalloc's arenas, so an overflow into a Python object is seen.
-  ( set +u; source .ws-asan/devel/setup.bash; set -u
+  ( set +u; source "$ROOT/.ws-asan/devel/setup.bash"; set -u
     LD_PRELOAD="$(clang++-14 -print-file-name=libclang_rt.asan-x86_64.so)" PYTHONMALLOC=malloc LLVM_PROFILE_FILE=/dev/null \
     LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS="log_path=$d/asan:detect_leaks=0:hard_rss_limit_mb=2048" \
     UBSAN_OPTIONS="log_path=$d/ubsan:print_stacktrace=1:halt_on_error=1:suppressions=$SUPP/ubsan.supp" \
@@ -116,17 +116,17 @@ tsan_run() {  # tsan_run NAME BINARY [ARGS...]
 for s in "${stages[@]}"; do
   case "$s" in
     asan)
-      stage asan-build build .ws-asan address,undefined clang++-14 -DCAR_FUZZ=ON test_core _core || continue
+      stage asan-build build "$ROOT/.ws-asan" address,undefined clang++-14 -DCAR_FUZZ=ON test_core _core || continue
       stage asan-gtest asan_gtest
       stage asan-pytest asan_pytest ;;
     asan-gtest|asan-pytest)  # one half, on the build that is there
       stage "$s" "${s/-/_}" ;;
     tsan|tsan-quick)
-      stage tsan-build-threads build .ws-tsan thread clang++-14 -DCAR_FUZZ=OFF test_threads || continue
-      stage tsan-threads tsan_run tsan-threads .ws-tsan/devel/lib/car/test_threads
+      stage tsan-build-threads build "$ROOT/.ws-tsan" thread clang++-14 -DCAR_FUZZ=OFF test_threads || continue
+      stage tsan-threads tsan_run tsan-threads "$ROOT/.ws-tsan/devel/lib/car/test_threads"
       [ "$s" = tsan ] || continue
-      stage tsan-build-core build .ws-tsan thread clang++-14 -DCAR_FUZZ=OFF test_core || continue
-      stage tsan-core tsan_run tsan-core .ws-tsan/devel/lib/car/test_core --gtest_filter="$TSAN_FILTER" ;;
+      stage tsan-build-core build "$ROOT/.ws-tsan" thread clang++-14 -DCAR_FUZZ=OFF test_core || continue
+      stage tsan-core tsan_run tsan-core "$ROOT/.ws-tsan/devel/lib/car/test_core" --gtest_filter="$TSAN_FILTER" ;;
     *) echo "sanitize: unknown stage '$s' (asan, tsan, tsan-quick)"; exit 2 ;;
   esac
 done

@@ -1,10 +1,20 @@
 #!/usr/bin/env bash
 # Idempotent set-up on Debian 12: Debian's ROS packages, a venv with car's PyPI dependencies, and a catkin
-# workspace in .ws/ (git-ignored) holding this repository as .ws/src/car. Re-running with everything in
-# place only rebuilds what changed.
+# workspace in .ws/ (git-ignored) whose src/ links car/, the compat/ drop-ins and the fixtures' packages.
+# Re-running with everything in place only rebuilds what changed.
+# Usage: tools/setup.sh [--deps-only]
+#   --deps-only  only the Debian packages and the venv (.venv/), for a clone inside a workspace of your own
+#                (README "Your own catkin workspace"); then catkin_make there.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
+deps_only=0
+for a in "$@"; do
+  case "$a" in
+    --deps-only) deps_only=1 ;;
+    *) echo "setup: unknown option $a (usage: tools/setup.sh [--deps-only])" >&2; exit 2 ;;
+  esac
+done
 
 DEB_PACKAGES=(
   build-essential cmake pkg-config catkin python3-catkin-pkg python3-venv python3-pip python3-dev python3-numpy python3-yaml
@@ -47,32 +57,34 @@ if [ ! -x "$VENV/bin/python3" ]; then
   /usr/bin/python3 -m venv --system-site-packages "$VENV"
 fi
 STAMP="$VENV/.requirements.sha"
-want="$(sha256sum requirements.txt | cut -d' ' -f1)"
+want="$(sha256sum car/requirements.txt | cut -d' ' -f1)"
 if [ "$(cat "$STAMP" 2>/dev/null)" != "$want" ]; then
   echo "setup: installing PyPI requirements into the venv"
-  "$VENV/bin/pip" install -q --disable-pip-version-check -r requirements.txt
+  "$VENV/bin/pip" install -q --disable-pip-version-check -r car/requirements.txt
   echo "$want" > "$STAMP"
 fi
 # `car COMMAND` (car batch, ...) on PATH wherever the venv is (the workspace's env hook puts it first)
-ln -sfn "$ROOT/scripts/car" "$VENV/bin/car"
+ln -sfn "$ROOT/car/scripts/car" "$VENV/bin/car"
 # PyPI xacro 2.x's own `xacro` command finds packages through ament (ROS 2): the venv's `xacro` (first on PATH
 # once .ws/devel/setup.bash is sourced) runs car's instead, Noetic's dialect with catkin's $(find).
 printf '#!%s\nimport sys\nsys.path.insert(0, %s)\nfrom car.xacro_tool import main\nsys.exit(main())\n' \
-  "$VENV/bin/python3" "'$ROOT/python'" > "$VENV/bin/xacro"
+  "$VENV/bin/python3" "'$ROOT/car/python'" > "$VENV/bin/xacro"
 chmod +x "$VENV/bin/xacro"
 
-# catkin workspace: .ws/src/car holds a link to each top-level entry of this repository (not a link to the
-# repository itself: rosrun and roslaunch search a package's folder following links, and would find .ws inside
-# it again and again). Dot-entries (.ws, .venv, .git) stay out.
+if [ $deps_only = 1 ]; then
+  echo "setup: Debian packages and $VENV ready; build car in your workspace with catkin_make"
+  exit 0
+fi
+
+# catkin workspace: .ws/src/car links car/, car's package. Each package of this repository sits in a folder of its
+# own (car/, compat/NAME/, fixtures/NAME/), so catkin finds every one and roslaunch/rosrun never see two.
 mkdir -p .ws/src
-[ -L .ws/src/car ] && rm .ws/src/car
-mkdir -p .ws/src/car
-for entry in "$ROOT"/*; do
-  ln -sfn "../../../$(basename "$entry")" ".ws/src/car/$(basename "$entry")"
-done
-for link in .ws/src/car/*; do
-  [ -e "$link" ] || rm -f "$link"
-done
+# a work tree set up before car/ existed holds .ws/src/car as a folder of links: replace it
+if [ -d .ws/src/car ] && [ ! -L .ws/src/car ]; then
+  find .ws/src/car -mindepth 1 -maxdepth 1 -type l -delete
+  rmdir .ws/src/car
+fi
+ln -sfn ../../car .ws/src/car
 # compat/: drop-in packages Debian lacks (gazebo_msgs), linked as .ws/src/NAME beside car. CAR_COMPAT=0 leaves
 # them out, and so does a real package of that name installed on the system (its share/NAME/package.xml).
 for pkg in "$ROOT"/compat/*/; do
@@ -86,9 +98,13 @@ for pkg in "$ROOT"/compat/*/; do
     ln -sfn "../../compat/$name" ".ws/src/$name"
   fi
 done
-# test fixtures that are packages of their own (the tutorial's urdf_rviz01, so its launch files run verbatim)
-for pkg in "$ROOT"/test/dropin/packages/*/; do
-  [ -f "$pkg/package.xml" ] && ln -sfn "../../test/dropin/packages/$(basename "$pkg")" ".ws/src/$(basename "$pkg")"
+# fixtures/: test packages of their own (the tutorial's urdf_rviz01, so its launch files run verbatim). A
+# CATKIN_IGNORE keeps them out of a user's workspace; here they are linked one by one.
+for pkg in "$ROOT"/fixtures/*/; do
+  [ -f "$pkg/package.xml" ] && ln -sfn "../../fixtures/$(basename "$pkg")" ".ws/src/$(basename "$pkg")"
+done
+for link in .ws/src/*; do
+  [ -L "$link" ] && [ ! -e "$link" ] && rm -f "$link"
 done
 set +u
 # shellcheck disable=SC1091

@@ -3,5 +3,5 @@
 # sim_node's resident memory sampled every few sim seconds; reports its growth per sim hour.
 # Usage: bash bench/soak.sh [--sim-seconds 3600] [--every 30] [--warmup 60] [--max-wall 0]
 set -euo pipefail
-source "$(dirname "${BASH_SOURCE[0]}")/../tools/env.sh"
-exec "$ROOT/.venv/bin/python" "$ROOT/bench/soak.py" "$@"
+source "$(dirname "${BASH_SOURCE[0]}")/../../tools/env.sh"
+exec "$ROOT/.venv/bin/python" "$ROOT/car/bench/soak.py" "$@"

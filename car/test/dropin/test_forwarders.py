@@ -9,7 +9,7 @@ import xml.etree.ElementTree as ET
 import pytest
 
 ROOT = os.path.realpath(os.path.join(os.path.dirname(os.path.realpath(__file__)), '..', '..'))
-COMPAT = os.path.join(ROOT, 'compat')
+COMPAT = os.path.join(os.path.dirname(ROOT), 'compat')
 
 # executable -> the car entry point it forwards to (module function, or car executable exec'd by path)
 FORWARDS = {

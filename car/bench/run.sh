@@ -4,7 +4,7 @@
 # Each figure is the best of N interleaved rounds (default 5), its median beside it; about 5 min on a quiet
 # machine (estimated; the run prints its own time).
 set -euo pipefail
-source "$(dirname "${BASH_SOURCE[0]}")/../tools/env.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/../../tools/env.sh"
 "$ROOT/.venv/bin/python" -c "import pybullet, mujoco" 2>/dev/null || \
-  "$ROOT/.venv/bin/pip" install -q --disable-pip-version-check -r "$ROOT/bench/requirements.txt"
-"$ROOT/.venv/bin/python" "$ROOT/bench/bench_physics.py" "$@" 2>&1 | grep -v "^pybullet build time\|b3Warning\|No inertial data\|^base_footprint"
+  "$ROOT/.venv/bin/pip" install -q --disable-pip-version-check -r "$ROOT/car/bench/requirements.txt"
+"$ROOT/.venv/bin/python" "$ROOT/car/bench/bench_physics.py" "$@" 2>&1 | grep -v "^pybullet build time\|b3Warning\|No inertial data\|^base_footprint"

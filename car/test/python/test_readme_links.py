@@ -6,7 +6,8 @@ import os
 import re
 
 # realpath: under catkin this file is reached through .ws/src/car/test -> the repository's test/
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+# the repository: README.md, CHANGELOG.md and docs/ sit beside car/
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__)))))
 README = os.path.join(ROOT, 'README.md')
 
 # [text](target) and ![alt](target); target up to whitespace or ')' (an optional "title" may follow)

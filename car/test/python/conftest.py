@@ -6,12 +6,14 @@ import sys
 import pytest
 
 # The repository, whether pytest runs it from the checkout or through catkin's link farm (.ws/src/car/test/python)
+# car's package folder, and the repository holding it beside compat/, tools/ and docs/
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+REPO = os.path.dirname(ROOT)
 DATA = os.path.join(ROOT, 'test', 'data')
 URDF = os.path.join(ROOT, 'urdf')
 # The devel space whose generated message headers the C++ checks read: catkin's run_tests passes it
 # (CAR_DEVEL_PREFIX); run by hand, the workspace tools/setup.sh makes.
-DEVEL = os.environ.get('CAR_DEVEL_PREFIX') or os.path.join(ROOT, '.ws', 'devel')
+DEVEL = os.environ.get('CAR_DEVEL_PREFIX') or os.path.join(REPO, '.ws', 'devel')
 # Where a real (non-drop-in) ROS package is installed, tools/setup.sh leaves compat/NAME out of the workspace.
 SYSTEM_PREFIXES = ('/opt/ros/noetic', '/usr', '/usr/local')
 

@@ -14,9 +14,9 @@ import re
 
 import pytest
 
-from conftest import ROOT, generated_header
+from conftest import REPO, generated_header
 
-COMPAT = os.path.join(ROOT, 'compat', 'gazebo_msgs')
+COMPAT = os.path.join(REPO, 'compat', 'gazebo_msgs')
 
 UPSTREAM_MD5 = {
     'msg/ContactState': '48c0ffb054b8c444f870cecea1ee50d9',

@@ -6,7 +6,7 @@ set -u
 N=${1:-20}
 OUT=${2:-bench/out/testing_stress}
 HERE=$(cd "$(dirname "$0")/.." && pwd)
-PY=${PYTHON:-$HERE/.venv/bin/python}
+PY=${PYTHON:-$HERE/../.venv/bin/python}
 mkdir -p "$OUT"
 pids=()
 for i in 1 2; do (while :; do :; done) & pids+=($!); done

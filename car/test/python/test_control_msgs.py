@@ -13,7 +13,7 @@ import re
 
 import pytest
 
-from conftest import ROOT, generated_header
+from conftest import REPO, generated_header
 
 UPSTREAM_MD5 = {
     'controller_manager_msgs/msg/ControllerState': 'aeb6b261d97793ab74099a3740245272',
@@ -46,13 +46,13 @@ def _hash_compat():
     import tempfile
     act = tempfile.mkdtemp()
     # the action's goal, result and feedback sections as messages (what genaction generates from them)
-    text = open(os.path.join(ROOT, 'compat', 'control_msgs', 'action', 'FollowJointTrajectory.action')).read()
+    text = open(os.path.join(REPO, 'compat', 'control_msgs', 'action', 'FollowJointTrajectory.action')).read()
     for part, body in zip(('Goal', 'Result', 'Feedback'), text.split('\n---')):
         with open(os.path.join(act, 'FollowJointTrajectory%s.msg' % part), 'w') as f:
             f.write(body.lstrip('\n'))
     search = {p: ['/usr/share/%s/msg' % p] for p in ('std_msgs', 'geometry_msgs', 'trajectory_msgs', 'actionlib_msgs')}
-    search['controller_manager_msgs'] = [os.path.join(ROOT, 'compat', 'controller_manager_msgs', 'msg')]
-    search['control_msgs'] = [os.path.join(ROOT, 'compat', 'control_msgs', 'msg'), act]
+    search['controller_manager_msgs'] = [os.path.join(REPO, 'compat', 'controller_manager_msgs', 'msg')]
+    search['control_msgs'] = [os.path.join(REPO, 'compat', 'control_msgs', 'msg'), act]
     ctx = ml.MsgContext.create_default()
     out = {}
     for key in UPSTREAM_MD5:
@@ -60,7 +60,7 @@ def _hash_compat():
         if name.startswith('FollowJointTrajectory'):
             path = os.path.join(act, name + '.msg')
         else:
-            path = os.path.join(ROOT, 'compat', pkg, kind, name + '.' + kind)
+            path = os.path.join(REPO, 'compat', pkg, kind, name + '.' + kind)
         spec = (ml.load_msg_from_file if kind == 'msg' else ml.load_srv_from_file)(ctx, path, pkg + '/' + name)
         ml.load_depends(ctx, spec, search)
         out[key] = gt.compute_md5(ctx, spec)

@@ -3,9 +3,9 @@ import os
 import subprocess
 import sys
 
-from conftest import ROOT
+from conftest import REPO
 
-CHECK = os.path.join(ROOT, 'tools', 'check_deps.py')
+CHECK = os.path.join(REPO, 'tools', 'check_deps.py')
 
 
 def run_check(root):
@@ -13,7 +13,7 @@ def run_check(root):
 
 
 def test_repository_declares_every_dependency_it_uses():
-    r = run_check(ROOT)
+    r = run_check(REPO)
     assert r.returncode == 0, r.stdout
     assert r.stdout.strip().endswith('0 undeclared dependencies')
 
