@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Runs every test tier through catkin: gtest (core), pytest (tools), rostest (launch files).
+# Runs every test tier through catkin: gtest (core), pytest (tools), rostest (launch files); then
+# tools/test_workspace.sh (a fresh catkin workspace and the install space, docs/INSTALL.md).
 # The verdict comes from catkin_test_results, since `catkin_make run_tests` exits 0 on failures.
 set -euo pipefail
 # The closing line is always "N passed, N failed, N skipped". Where nothing could be counted (the set-up, the
@@ -17,6 +18,11 @@ cd "$ROOT/.ws"
 rm -rf build/test_results
 catkin_make run_tests -j2 > test.log 2>&1 || { tail -n 80 test.log; uncounted "build of the tests failed"; }
 grep -E '^\[ *(RUN|  FAILED|  PASSED) *\]|passed|failed|FAILURE|ERROR' test.log | grep -v '^\[ RUN' | tail -n 40 || true
+# car the ROS way: a fresh workspace (catkin_make, catkin_make_isolated, ROS's tools without a prompt) and the
+# install space alone (the rostests against it, the source tree hidden); its checks join the counts below
+bash "$ROOT/tools/test_workspace.sh" --junit build/test_results/car/workspace.xml > workspace.log 2>&1 || true
+grep '^test_workspace: ' workspace.log | grep -v '^test_workspace: ok ' | tail -n 20 || true
+[ -s build/test_results/car/workspace.xml ] || printf '<?xml version="1.0"?>\n<testsuite name="workspace" tests="1" failures="1" errors="0" skipped="0"><testcase classname="car.workspace" name="test_workspace_ran"><failure message="tools/test_workspace.sh wrote no results (see .ws/workspace.log)"/></testcase></testsuite>\n' > build/test_results/car/workspace.xml
 set +e
 summary="$(catkin_test_results build/test_results 2>&1)"
 rc=$?

@@ -22,7 +22,9 @@ import gymnasium
 import numpy as np
 from gymnasium import spaces
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from car.paths import package_dir
+
+ROOT = package_dir()
 DEFAULT_WORLD = os.path.join(ROOT, 'worlds', 'box_house.world')
 DEFAULT_MODEL = os.path.join(ROOT, 'urdf', 'car_camera_lidar04.xacro')
 _model_cache = {}

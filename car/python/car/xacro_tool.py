@@ -11,7 +11,9 @@ import re
 import sys
 import xml.parsers.expat
 
-PACKAGE_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from car.paths import package_dir
+
+PACKAGE_ROOT = package_dir()
 
 
 class ExpandError(Exception):

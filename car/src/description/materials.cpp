@@ -3,12 +3,14 @@
 #include <fstream>
 #include <sstream>
 
+#include "package_path.hpp"
+
 namespace car_sim {
 
 const std::map<std::string, Eigen::Vector4d>& gazebo_colours() {
   static const std::map<std::string, Eigen::Vector4d> table = [] {
     std::map<std::string, Eigen::Vector4d> t;
-    std::ifstream in(CAR_CONFIG_DIR "/gazebo_materials.txt");
+    std::ifstream in(detail::car_package_dir() + "/config/gazebo_materials.txt");
     std::string line;
     while (std::getline(in, line)) {
       line = line.substr(0, line.find('#'));

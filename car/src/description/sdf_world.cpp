@@ -89,7 +89,7 @@ std::vector<std::string> split_path(const char* env) {
 
 std::string package_named(const std::string& name) {
   std::vector<std::string> roots = split_path(std::getenv("ROS_PACKAGE_PATH"));
-  roots.push_back(CAR_PACKAGE_DIR);  // car itself, also where no ROS environment is set up
+  roots.push_back(detail::car_package_dir());  // car itself, also where no ROS environment is set up
   // rospack's crawl: nested packages (catkin_ws/src/REPO/PKG) are found too
   return detail::find_ros_package(name, roots);
 }
@@ -264,7 +264,7 @@ WorldDescription convert(const sdf::Root& root, const std::string& source) {
 
 std::vector<std::string> model_path() {
   std::vector<std::string> dirs = split_path(std::getenv("GAZEBO_MODEL_PATH"));
-  dirs.push_back(CAR_MODELS_DIR);
+  dirs.push_back(detail::car_package_dir() + "/models");
   return dirs;
 }
 

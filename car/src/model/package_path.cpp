@@ -1,6 +1,7 @@
 // rospack's package crawl for package:// URIs (see package_path.hpp).
 #include "package_path.hpp"
 
+#include <dlfcn.h>
 #include <tinyxml2.h>
 
 #include <filesystem>
@@ -74,6 +75,21 @@ std::string find_ros_package(const std::string& name, const std::vector<std::str
     if (it != found.end()) return it->second;
   }
   return "";
+}
+
+const std::string& car_package_dir() {
+  static const std::string dir = [] {
+    // the file this function was loaded from: <prefix>/lib/libcar_sim.so once installed
+    Dl_info info{};
+    if (dladdr(reinterpret_cast<void*>(&car_package_dir), &info) && info.dli_fname) {
+      std::error_code ec;
+      const fs::path lib = fs::canonical(info.dli_fname, ec);
+      const fs::path share = lib.parent_path().parent_path() / "share" / "car";
+      if (!ec && fs::exists(share / "config" / "gazebo_materials.txt", ec)) return share.string();
+    }
+    return std::string(CAR_PACKAGE_DIR);
+  }();
+  return dir;
 }
 
 }  // namespace detail

@@ -14,5 +14,10 @@ namespace detail {
 // catkin_ws/src/universal_robot/ur_description is found from catkin_ws/src. "" when no entry holds it.
 std::string find_ros_package(const std::string& name, const std::vector<std::string>& entries);
 
+// car's own data folder (config/, models/, urdf/, worlds/): <prefix>/share/car beside the loaded libcar_sim where
+// car is installed (catkin_make install, the .debs: relocatable), else the source package it was built from (the
+// devel space). Docs: docs/INSTALL.md "Where car finds its files".
+const std::string& car_package_dir();
+
 }  // namespace detail
 }  // namespace car_sim
