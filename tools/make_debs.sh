@@ -22,12 +22,14 @@ cd "$ROOT"
 command -v dpkg-shlibdeps >/dev/null || { echo "make_debs: needs dpkg-dev (apt-get install dpkg-dev)"; exit 2; }
 
 # ---- build: a workspace of its own, in an environment with no other workspace in it ------------------------------
-mkdir -p "$WS/src"
-ln -sfn "$ROOT/car" "$WS/src/car"
-for pkg in compat/*/; do ln -sfn "$ROOT/compat/$(basename "$pkg")" "$WS/src/$(basename "$pkg")"; done
+# WS/ws/src/car is this repository, as a clone in a user's workspace (catkin skips the dot-folders .ws*; the same
+# layout as tools/test_workspace.sh's, so that ccache, where installed, shares their objects)
+mkdir -p "$WS/ws/src"
+ln -sfn "$ROOT" "$WS/ws/src/car"
 launcher=(); command -v ccache >/dev/null 2>&1 && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-echo "make_debs: building $WS (prefix $PREFIX)"
-(cd "$WS" && env -u CMAKE_PREFIX_PATH -u ROS_PACKAGE_PATH -u PYTHONPATH -u LD_LIBRARY_PATH -u ROS_DISTRO \
+export CCACHE_BASEDIR="$WS"
+echo "make_debs: building $WS/ws (prefix $PREFIX)"
+(cd "$WS/ws" && env -u CMAKE_PREFIX_PATH -u ROS_PACKAGE_PATH -u PYTHONPATH -u LD_LIBRARY_PATH -u ROS_DISTRO \
   catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=OFF \
   -DCMAKE_INSTALL_PREFIX="$PREFIX" "${launcher[@]}" -j"${JOBS:-2}" > "$WS/build.log" 2>&1) ||
   { tail -n 40 "$WS/build.log"; exit 1; }
@@ -40,11 +42,11 @@ install_part() {  # install_part DEB CMAKE_INSTALL_FILE [extra cmake -D...]
     { tail -n 20 "$STAGE/$deb.install.log"; exit 1; }
 }
 # the workspace's own files (setup.bash, _setup_util.py, .catkin, env.sh): the top folder's rules only
-install_part ros-car-setup "$WS/build/cmake_install.cmake" -DCMAKE_INSTALL_LOCAL_ONLY=1
+install_part ros-car-setup "$WS/ws/build/cmake_install.cmake" -DCMAKE_INSTALL_LOCAL_ONLY=1
 for pkg in car compat/*; do
   name="$(basename "$pkg")"
   deb="ros-car"; [ "$name" = car ] || deb="ros-car-${name//_/-}"
-  install_part "$deb" "$WS/build/$name/cmake_install.cmake"
+  install_part "$deb" "$WS/ws/build/car/$pkg/cmake_install.cmake"
 done
 
 # Python programs run on Debian's python3, as dh_python3 writes them (catkin_install_python leaves

@@ -80,6 +80,16 @@ class Recorder:
         raise AssertionError('no message at sim time %.3f within %.0f s' % (t, timeout))
 
 
+def car_program(name):
+    """The path of car's program NAME as rosrun finds it: lib/car/NAME (the devel space's relay, or the install
+    space's copy) before the source's scripts/NAME, so a test runs what the space under test holds."""
+    import roslib.packages
+    found = roslib.packages.find_node('car', name)
+    if not found:
+        raise AssertionError('car has no program %s (is the workspace built and sourced?)' % name)
+    return found[0]
+
+
 def wait_publisher(sub, node='/gazebo', timeout=300.0):
     """Waits (wall time, a bound for a hang only) until node's publisher has connected to the rospy Subscriber
     sub: a topic with several publishers (/rosout) connects them one at a time, and what node sends before its

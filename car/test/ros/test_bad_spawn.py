@@ -11,6 +11,7 @@ import rostest
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), 'python'))
 import bad_corpus  # noqa: E402
 from gazebo_services import DeleteModel, GetWorldProperties  # noqa: E402
+import simtest  # noqa: E402
 
 
 class BadSpawnTest(unittest.TestCase):
@@ -38,7 +39,7 @@ class BadSpawnTest(unittest.TestCase):
                     f.write(xml)
             model = 'case_%d' % i
             tried += 1
-            p = bad_corpus.run_bounded([sys.executable, os.path.join(bad_corpus.ROOT, 'scripts', 'spawn_model'),
+            p = bad_corpus.run_bounded([sys.executable, simtest.car_program('spawn_model'),
                                         '-urdf', '-file', path, '-model', model, '-timeout', '30'])
             out = p.stdout + p.stderr
             want_ok = entry.get('spawn', entry['exit'] == 0)

@@ -192,7 +192,7 @@ class GazeboMsgsClientTest(unittest.TestCase):
 
     @staticmethod
     def script():
-        return os.path.join(ROOT, 'scripts', 'spawn_model')
+        return simtest.car_program('spawn_model')
 
 
 if __name__ == '__main__':
