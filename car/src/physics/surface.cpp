@@ -178,6 +178,20 @@ void SurfaceSolver::convertContacts(btPersistentManifold** manifolds, int count,
   }
   own_ = own_rows(info);
   inverse_used_ = 0;
+  // Gazebo's default surface (max_vel 0.01 m/s, min_depth 0) on every pair Bullet's conversion sets up: each
+  // point's correction capped before its rows are made, the held-back part kept for the split (solve_push)
+  capped_.clear();
+  for (int i = 0; i < bullet_.size(); ++i) {
+    btPersistentManifold* m = bullet_[i];
+    if (!btMultiBodyLinkCollider::upcast(m->getBody0()) && !btMultiBodyLinkCollider::upcast(m->getBody1())) continue;
+    for (int j = 0; j < m->getNumContacts(); ++j) {
+      btManifoldPoint& cp = m->getContactPoint(j);
+      if (cp.getDistance() > m->getContactProcessingThreshold()) continue;
+      const btScalar distance = cp.m_distance1;
+      const btScalar push = cap_depth(cp, info, contact_erp(cp, info), kDefaultMaxVel, 0.0);
+      if (push > 0) capped_.push_back({&cp, distance, push});
+    }
+  }
   if (!own_) {
     // Bullet's own conversion (it also adds the joint constraints' rows), then car's contacts
     btMultiBodyConstraintSolver::convertContacts(bullet_.size() ? &bullet_[0] : nullptr, bullet_.size(), info);
@@ -204,8 +218,50 @@ void SurfaceSolver::convertContacts(btPersistentManifold** manifolds, int count,
     btMultiBodyConstraintSolver::convertContacts(nullptr, 0, info);
     converting_ = nullptr;
   }
+  // the capped points' depths back, their normal rows' held-back impulses to the split
+  if (!capped_.empty()) {
+    for (const auto& c : capped_) c.point->m_distance1 = c.distance;
+    for (int r = 0; r < m_multiBodyNormalContactConstraints.size(); ++r) {
+      const btMultiBodySolverConstraint& row = m_multiBodyNormalContactConstraints[r];
+      for (const auto& c : capped_)
+        if (row.m_originalContactPoint == c.point) {
+          push_.push_back({r, c.push * row.m_jacDiagABInv, 0});
+          break;
+        }
+    }
+  }
   for (int i = 0; i < car_.size(); ++i) convert(car_[i], info, true);
   for (int i = 0; i < frictionless_.size(); ++i) convert(frictionless_[i], info, false);
+}
+
+// The erp of a contact point's normal row (setup_row's rule): from its stiffness and damping when car set them,
+// else the world's erp2 (Bullet's rigid contact).
+double SurfaceSolver::contact_erp(const btManifoldPoint& cp, const btContactSolverInfo& info) {
+  if (cp.m_contactPointFlags & BT_CONTACT_FLAG_HAS_CONTACT_ERP) return cp.m_contactERP;
+  if (!(cp.m_contactPointFlags & BT_CONTACT_FLAG_HAS_CONTACT_CFM) &&
+      (cp.m_contactPointFlags & BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING)) {
+    const double denom = info.m_timeStep * cp.m_combinedContactStiffness1 + cp.m_combinedContactDamping1;
+    return denom < SIMD_EPSILON ? 0.0 : info.m_timeStep * cp.m_combinedContactStiffness1 / denom;
+  }
+  return info.m_erp2;
+}
+
+// ODE's cap on a contact's correction (contact.cpp getInfo2): the depth the normal row corrects [m] (negative
+// distance) less min_depth, and no more than `max_vel` [m/s] (truncated by the world's
+// contact_max_correcting_vel) can correct in one step at the row's erp. Sets the point's distance to what the
+// velocity solve corrects; returns the correction velocity [m/s] the cap holds back (0 if none).
+btScalar SurfaceSolver::cap_depth(btManifoldPoint& cp, const btContactSolverInfo& info, double erp, double max_vel,
+                                  double min_depth) {
+  btScalar d = cp.m_distance1;
+  if (d < 0 && min_depth > 0) d = std::min<btScalar>(d + min_depth, 0);
+  btScalar push = 0;
+  const double cap = std::min(max_vel, kMaxCorrectingVel);
+  if (d < 0 && erp > 0 && -d * erp / info.m_timeStep > cap) {
+    push = static_cast<btScalar>(-d * erp / info.m_timeStep - cap);
+    d = static_cast<btScalar>(-cap * info.m_timeStep / erp);
+  }
+  cp.m_distance1 = d;
+  return push;
 }
 
 // Bullet's finish reads two friction rows at every normal row's friction index: normal rows without friction
@@ -294,18 +350,9 @@ void SurfaceSolver::convert(btPersistentManifold* m, const btContactSolverInfo& 
     // correct in one step at the row's erp (the surface's maxVel, Gazebo's 0.01 m/s when unset, truncated by the
     // world's contact_max_correcting_vel). What the cap holds back moves positions only (ODE's split: below).
     const btScalar distance = cp.m_distance1;
-    btScalar d = distance;
-    if (d < 0 && p.min_depth) d = std::min<btScalar>(d + *p.min_depth, 0);
-    btScalar push = 0;  // [m/s] correction velocity held back by the cap
-    if (d < 0 && rules) {
-      const double erp = p.stiffness ? info.m_timeStep * p.kp / (info.m_timeStep * p.kp + p.kd) : info.m_erp2;
-      const double cap = std::min(p.max_vel.value_or(kDefaultMaxVel), kMaxCorrectingVel);
-      if (erp > 0 && -d * erp / info.m_timeStep > cap) {
-        push = static_cast<btScalar>(-d * erp / info.m_timeStep - cap);
-        d = static_cast<btScalar>(-cap * info.m_timeStep / erp);
-      }
-    }
-    cp.m_distance1 = d;
+    const double erp = p.stiffness ? info.m_timeStep * p.kp / (info.m_timeStep * p.kp + p.kd) : info.m_erp2;
+    // [m/s] correction velocity held back by the cap
+    const btScalar push = cap_depth(cp, info, erp, p.max_vel.value_or(kDefaultMaxVel), p.min_depth.value_or(0.0));
     btScalar relaxation;
     if (own_)
       setup_row(c, cp.m_normalWorldOnB, cp, info, relaxation, false);

@@ -79,7 +79,8 @@ class SurfaceCollider : public btMultiBodyLinkCollider {
 
 // Bullet's multibody solver with car's conversion for the contacts whose pair needs Gazebo's surface rules
 // (mu1 != mu2, fdir1, kp/kd, minDepth, maxVel, maxContacts, shapes of one body with different surfaces).
-// Every other contact goes through Bullet's own conversion, unchanged.
+// Every other contact goes through Bullet's own conversion, its correction capped by Gazebo's default surface
+// (max_vel 0.01 m/s) when a robot is on one side.
 // A contact without friction on either side (a ball caster's, mu 0) gets its normal row only: Bullet would add
 // friction rows bounded to zero, which cost a Jacobian and an iteration each and never push.
 class SurfaceSolver : public btMultiBodyConstraintSolver {
@@ -121,6 +122,12 @@ class SurfaceSolver : public btMultiBodyConstraintSolver {
   // ODE's split correction: the capped part of each normal row's correction, solved on its own and given to the
   // multibodies as split velocities (positions only).
   void solve_push(const btContactSolverInfo& info);
+  // The erp of a contact point's normal row (setup_row's rule).
+  static double contact_erp(const btManifoldPoint& cp, const btContactSolverInfo& info);
+  // ODE's cap on a point's correction: sets its distance to what the velocity solve corrects, returns the
+  // correction velocity [m/s] held back for the split.
+  static btScalar cap_depth(btManifoldPoint& cp, const btContactSolverInfo& info, double erp, double max_vel,
+                            double min_depth);
 
   // ---- row set-up with factored mass matrices (docs/COMPAT-physics.md "Row set-up") ----
   // Whether this solve's contact rows are set up by car (Bullet's rules that car's set-up covers: no articulated
@@ -158,6 +165,12 @@ class SurfaceSolver : public btMultiBodyConstraintSolver {
     btScalar impulse;    // [N s] accumulated
   };
   std::vector<PushRow> push_;
+  struct CappedPoint {
+    btManifoldPoint* point;  // a point on Bullet's path whose correction the default cap limited
+    btScalar distance;       // [m] its own distance, restored after its rows are made
+    btScalar push;           // [m/s] correction velocity held back
+  };
+  std::vector<CappedPoint> capped_;
   std::vector<btScalar> push_dv_;  // split velocity changes, laid out as m_data.m_deltaVelocities
   std::vector<char> circle_;       // per friction row: first of a pair solved by Coulomb's isotropic law
 };

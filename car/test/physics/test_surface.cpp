@@ -212,6 +212,45 @@ TEST(SurfaceContact, DeepPenetrationIsLiftedOutNotThrown) {
   }
 }
 
+TEST(SurfaceContact, UnkeyedPairIsLiftedOutNotThrown) {
+  // docs/COMPAT-physics.md "Penetration", "Every pair": Gazebo's default surface caps every contact's correction
+  // at max_vel 0.01 m/s, also where the description sets no key. A plain 1 kg box (no <gazebo> keys: Bullet's rows,
+  // erp2 0.2), 0.4 x 0.4 x 0.2 m, started 0.1 m into the ground. Uncapped, the correction 0.2 * 0.1 m / 1 ms =
+  // 20 m/s throws it. Capped, its upward speed never exceeds 0.01 m/s (tolerance 1e-4); the split moves it out by
+  // 20 % of the depth a step, 0.1 m * 0.8^n < 1 um after 52 steps, so it rests at 0.1 m (tolerance 0.1 mm) by
+  // 0.5 s and never rises above that + 1 mm.
+  physics::Physics p(flat(), options(), {});
+  const RobotModel m = block(1.0, 0.4, 0.4, 0.2, "");
+  physics::Robot& r = p.add_robot(m, "box", pose(0, 0, 0.1 - 0.1), {});
+  double top = -1, fastest = -1;
+  for (int i = 0; i < 500; ++i) {
+    run(p, 1);
+    top = std::max(top, r.root_state().pose.translation().z());
+    fastest = std::max(fastest, r.root_state().linear.z());
+  }
+  EXPECT_LE(fastest, 0.01 + 1e-4);
+  EXPECT_LE(top, 0.1 + 1e-3);
+  EXPECT_NEAR(r.root_state().pose.translation().z(), 0.1, 1e-4);
+}
+
+TEST(SurfaceContact, SoftContactAtRestKeepsODEsSinkSpeed) {
+  // docs/COMPAT-physics.md "At rest on a soft contact": the capped velocity solve reads J v + (cfm / dt) lambda =
+  // min(c, max_vel) with lambda = N dt at rest, so the body's vertical velocity is max_vel - N / (dt kp + kd) while
+  // the split holds its position (Gazebo's quickstep: velocities from the capped solve). A 1 kg, 0.4 x 0.4 x 0.05 m
+  // plate with kp 1e5, kd 1 on its 4 corners: N = 10 / 4 = 2.5 N; the pair's kp = 1 / (1/1e5 + 1/1e12), kd = 2,
+  // dt kp + kd = 101.9999999 (1e-12 relative below 102); speed 0.01 - 2.5 / 101.9999999 = -0.0145098 m/s (tolerance
+  // 1e-6), and its height steady (moved < 1e-9 m over the last 0.1 s).
+  physics::Physics p(flat(), options(), {});
+  const RobotModel m = block(1.0, 0.4, 0.4, 0.05, "<kp>1e5</kp><kd>1</kd>");
+  physics::Robot& r = p.add_robot(m, "plate", pose(0, 0, 0.025), {});
+  run(p, 900);
+  const double z0 = r.root_state().pose.translation().z();
+  run(p, 100);
+  const double kp = 1.0 / (1.0 / 1e5 + 1.0 / 1e12);
+  EXPECT_NEAR(r.root_state().linear.z(), 0.01 - 2.5 / (kDt * kp + 2.0), 1e-6);
+  EXPECT_NEAR(r.root_state().pose.translation().z(), z0, 1e-9);
+}
+
 TEST(SurfaceFriction, EqualMuSlidesAgainstItsSlip) {
   // docs/COMPAT-physics.md "Skid steering": with mu1 = mu2 (here 0.5, fdir1 1 0 0 so car converts the pair) the
   // friction force of a sliding contact is mu N against its slip, whatever fdir1 says. The plate pushed at 1 m/s

@@ -150,8 +150,9 @@ TEST(SkidSteer, JackalLikeDrivesStraightAtCommandedSpeed) { EXPECT_NEAR(straight
 
 // Husky as husky_gazebo spawns it, at z = 0 (wheels 0.132 m in the ground). Rest height of base_link: wheel
 // radius - wheel joint height = 0.1651 - 0.03282 = 0.13228 m (less m g / (4 kp) = 14 um). Its base is lifted out
-// and rests there (within 1 mm) from 2 s of sim time on (checked to 3 s). (Its vertical speed, measured, stays
-// up to 3.9 mm/s at rest, step to step; not asserted.)
+// and rests there (within 1 mm) from 2 s of sim time on (checked to 3 s). (At rest it reports a steady vertical
+// speed of -3.86 mm/s that never moves it: ODE's capped velocity solve on soft tyres, 0.01 - N / (dt kp + kd);
+// docs/COMPAT-physics.md "At rest on a soft contact", asserted in SurfaceContact.SoftContactAtRestKeepsODEsSinkSpeed.)
 TEST(SkidSteer, HuskyLikeSpawnedInGroundRestsWithin2s) {
   const double rest = 0.1651 - 0.03282;
   auto w = spawned(kHusky, 0.0);
