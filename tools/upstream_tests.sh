@@ -86,6 +86,10 @@ find_package(OpenCV QUIET)
 include_directories(${catkin_INCLUDE_DIRS} ${image_transport_INCLUDE_DIRS} ${cv_bridge_INCLUDE_DIRS} ${tf_INCLUDE_DIRS}
   ${OpenCV_INCLUDE_DIRS})
 set(UPSTREAM_LIBS ${catkin_LIBRARIES} ${image_transport_LIBRARIES} ${cv_bridge_LIBRARIES} ${tf_LIBRARIES} ${OpenCV_LIBRARIES})
+# Boost 1.74 (Debian 12) keeps bind's _1, _2 out of the global namespace unless asked; Ubuntu 20.04's Boost 1.71
+# put them there, and upstream's multicamera and distortion tests use them unqualified
+add_compile_definitions(BOOST_BIND_GLOBAL_PLACEHOLDERS)
+add_compile_options(-include boost/bind.hpp)
 # name -> source, as upstream's CMakeLists names them
 macro(upstream_test name src)
   catkin_add_executable_with_gtest(${name} ${src})
@@ -108,7 +112,7 @@ if(image_transport_FOUND)
   endif()
 endif()
 EOF
-(cd "$WS" && catkin_make -j2 > "$WS/build.log" 2>&1) || echo "upstream_tests: the overlay did not build fully (see $WS/build.log)"
+(cd "$WS" && catkin_make -j2 -k > "$WS/build.log" 2>&1) || echo "upstream_tests: the overlay did not build fully (see $WS/build.log)"
 # upstream's ros_api_checker (the file itself is not touched), run by python3 with Ubuntu 20.04's PyYAML 5
 # semantics: it calls yaml.load(f) without a Loader, which PyYAML 6 (Debian 12) refuses
 mkdir -p "$WS/devel/lib/gazebo_ros"

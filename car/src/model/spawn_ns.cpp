@@ -40,6 +40,7 @@ bool namespace_rule(const std::string& filename, NamespaceRule* rule) {
       {"libgazebo_ros_laser.so", R::EmptyIsModel},
       {"libgazebo_ros_gpu_laser.so", R::EmptyIsModel},
       {"libgazebo_ros_camera.so", R::EmptyIsModel},
+      {"libgazebo_ros_triggered_camera.so", R::EmptyIsModel},
       {"libgazebo_ros_depth_camera.so", R::EmptyIsModel},
       {"libgazebo_ros_openni_kinect.so", R::EmptyIsModel},
       {"libgazebo_ros_multicamera.so", R::EmptyIsModel},

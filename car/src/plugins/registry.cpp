@@ -29,6 +29,7 @@
 #include "hector_imu/hector_imu.hpp"
 #include "multicamera/multicamera.hpp"
 #include "ros_control/ros_control.hpp"
+#include "triggered_camera/triggered_camera.hpp"
 
 namespace car_sim {
 
@@ -60,6 +61,7 @@ const std::vector<const PluginKind*>& plugin_kinds() {
       &hector_imu_kind(),
       &multicamera_kind(),
       &ros_control_kind(),
+      &triggered_camera_kind(),
   };
   return kinds;
 }

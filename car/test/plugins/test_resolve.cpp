@@ -179,5 +179,5 @@ TEST(PluginErrors, NearNotBelowFar) {
 }
 
 TEST(PluginErrors, UnknownImageFormat) {
-  EXPECT_EQ(config_error(car_with("<format>R8G8B8</format>", "<format>YUV</format>")), "sensor[camera]/camera/image/format: unknown format 'YUV' (known: L8, R8G8B8, B8G8R8)");
+  EXPECT_EQ(config_error(car_with("<format>R8G8B8</format>", "<format>YUV</format>")), "sensor[camera]/camera/image/format: unknown format 'YUV' (known: L8, L16, R8G8B8, B8G8R8, R16G16B16)");
 }

@@ -8,7 +8,8 @@
 #include <cstddef>
 #include <cstring>
 #include <limits>
-#include <set>
+#include <map>
+#include <sstream>
 
 namespace car_sim {
 
@@ -41,6 +42,12 @@ const std::vector<ParamDef>& camera_sensor_schema() {
       {"camera/noise/type", T, "none", ""},
       {"camera/noise/mean", N, "0", ""},
       {"camera/noise/stddev", N, "0", ""},
+      {"camera/distortion/k1", N, "0", ""},
+      {"camera/distortion/k2", N, "0", ""},
+      {"camera/distortion/k3", N, "0", ""},
+      {"camera/distortion/p1", N, "0", ""},
+      {"camera/distortion/p2", N, "0", ""},
+      {"camera/distortion/center", T, "0.5 0.5", ""},
   };
   return s;
 }
@@ -57,6 +64,8 @@ const std::vector<ParamDef>& camera_plugin_schema() {
       {"distortionK3", N, "0", ""},
       {"distortionT1", N, "0", ""},
       {"distortionT2", N, "0", ""},
+      {"autoDistortion", ParamType::Flag, "false", ""},
+      {"borderCrop", ParamType::Flag, "false", ""},
   };
   return s;
 }
@@ -88,10 +97,33 @@ void finish_camera(ResolveContext& ctx) {
   if (!(c.number("camera/clip/near") > 0)) ctx.fail_sensor("camera/clip/near", "near must be > 0");
   if (c.number("camera/clip/near") >= c.number("camera/clip/far"))
     ctx.fail_sensor("camera/clip/near", "near " + c.text("camera/clip/near") + " >= far " + c.text("camera/clip/far"));
+  // autoDistortion: camera_info's D from the sensor's <distortion> (docs/COMPAT-sensors.md "Lens distortion")
+  if (c.has("autoDistortion") && c.flag("autoDistortion")) {
+    for (const auto& [key, from] : std::map<std::string, std::string>{{"distortionK1", "k1"}, {"distortionK2", "k2"},
+                                                                       {"distortionK3", "k3"}, {"distortionT1", "p1"},
+                                                                       {"distortionT2", "p2"}})
+      ctx.set(key, c.text("camera/distortion/" + from));
+    if (c.has("borderCrop") && c.flag("borderCrop"))
+      ctx.warn(Severity::Warning, "border_crop", "borderCrop", "borderCrop true is not done: the image is not scaled");
+  }
+  if (c.has("camera/distortion/center")) {
+    std::istringstream cs(c.text("camera/distortion/center"));
+    double x = 0, y = 0;
+    if (!(cs >> x >> y)) ctx.fail_sensor("camera/distortion/center", "must be two numbers");
+  }
   const std::string& f = c.text("camera/image/format");
-  static const std::set<std::string> formats = {"L8", "R8G8B8", "B8G8R8", "RGB_INT8", "BGR_INT8"};
-  if (!formats.count(f))
-    ctx.fail_sensor("camera/image/format", "unknown format '" + f + "' (known: L8, R8G8B8, B8G8R8)");
+  if (camera_encoding(f).empty())
+    ctx.fail_sensor("camera/image/format", "unknown format '" + f + "' (known: L8, L16, R8G8B8, B8G8R8, R16G16B16)");
+}
+
+std::string camera_encoding(const std::string& format) {
+  // gazebo_ros_camera_utils' names, with sdformat's aliases
+  static const std::map<std::string, std::string> enc = {
+      {"L8", "mono8"},    {"L_INT8", "mono8"},   {"L16", "mono16"},       {"L_INT16", "mono16"},
+      {"R8G8B8", "rgb8"}, {"RGB_INT8", "rgb8"},  {"B8G8R8", "bgr8"},      {"BGR_INT8", "bgr8"},
+      {"R16G16B16", "rgb16"}, {"RGB_INT16", "rgb16"}};
+  const auto it = enc.find(format);
+  return it == enc.end() ? std::string() : it->second;
 }
 
 CameraPlugin::CameraPlugin(const PluginConfig& c, const std::string& robot, uint64_t seed, bool depth)
@@ -108,14 +140,26 @@ CameraPlugin::CameraPlugin(const PluginConfig& c, const std::string& robot, uint
   proto_.cy = (h_ - 1) / 2.0;
   near_ = c.number("camera/clip/near");
   far_ = c.number("camera/clip/far");
-  const std::string fmt = c.text("camera/image/format");
-  proto_.encoding = fmt == "L8" ? "mono8" : (fmt == "B8G8R8" || fmt == "BGR_INT8") ? "bgr8" : "rgb8";
+  proto_.encoding = camera_encoding(c.text("camera/image/format"));
+  if (proto_.encoding.empty()) proto_.encoding = "rgb8";
+  sixteen_ = proto_.channel_bytes() == 2;
   proto_.has_depth = depth;
   if (depth) {
     cutoff_ = c.number("pointCloudCutoff");
     // the generic depth camera has no upper cutoff
     cutoff_max_ = c.has("pointCloudCutoffMax") ? c.number("pointCloudCutoffMax") : kInf;
   }
+  if (c.has("camera/distortion/k1")) {
+    lens_ = {c.number("camera/distortion/k1"), c.number("camera/distortion/k2"), c.number("camera/distortion/k3"),
+             c.number("camera/distortion/p1"), c.number("camera/distortion/p2")};
+    std::istringstream cs(c.text("camera/distortion/center"));
+    double x = 0.5, y = 0.5;
+    cs >> x >> y;
+    lens_cx_ = x * w_ - 0.5;
+    lens_cy_ = y * h_ - 0.5;
+    distorted_ = lens_[0] != 0 || lens_[1] != 0 || lens_[2] != 0 || lens_[3] != 0 || lens_[4] != 0;
+  }
+  if (distorted_) make_lens_map();
   gaussian_ = c.text("camera/noise/type") == "gaussian";
   noise_mean_ = c.number("camera/noise/mean");
   noise_stddev_ = c.number("camera/noise/stddev");
@@ -134,7 +178,7 @@ CameraPlugin::CameraPlugin(const PluginConfig& c, const std::string& robot, uint
   }
   t_far_ = static_cast<float>(far_ / min_cos);
   hits_.resize(n);
-  if (gaussian_) rgb_.resize(3 * n);
+  if (gaussian_ || sixteen_) rgb_.resize(3 * n);
 }
 
 namespace {
@@ -292,13 +336,14 @@ void CameraPlugin::post_physics(const StepContext& ctx, const RobotHandle& robot
   const RayScene& scene = ctx.world->rays();
   const Environment& env = ctx.world->environment();
   auto o = std::make_unique<CameraOut>(proto_);
-  const int channels = o->encoding == "mono8" ? 1 : 3;
+  const int channels = o->channels();
+  const int bytes = o->channel_bytes();
   // the parts someone takes (none known: all): a depth camera makes depth for its depth image or cloud, colour for
   // its image or cloud; a plain camera always its image
   const uint32_t parts = (parts_ & (kCameraImage | kCameraDepth | kCameraCloud)) ? parts_ : ~0u;
   const bool make_depth = o->has_depth && (parts & (kCameraDepth | kCameraCloud));
   const bool make_colour = !make_depth || (parts & (kCameraImage | kCameraCloud));
-  if (make_colour) o->image.resize(static_cast<size_t>(n) * channels);
+  if (make_colour) o->image.resize(static_cast<size_t>(n) * channels * bytes);
   if (make_depth) o->depth.resize(n);
   if (make_depth && make_colour) {
     o->points.resize(3 * static_cast<size_t>(n));
@@ -307,7 +352,7 @@ void CameraPlugin::post_physics(const StepContext& ctx, const RobotHandle& robot
   const Eigen::Vector3f light = (-env.sun_direction).normalized().cast<float>();
   const float ambient = static_cast<float>(env.ambient);
   const Eigen::Vector3f bg = env.background.cast<float>();
-  const bool mono = o->encoding == "mono8";
+  const bool mono = channels == 1;
   const bool bgr = o->encoding == "bgr8";
   const float f = static_cast<float>(o->f), cx = static_cast<float>(o->cx), cy = static_cast<float>(o->cy);
   const float far = static_cast<float>(far_);
@@ -333,10 +378,11 @@ void CameraPlugin::post_physics(const StepContext& ctx, const RobotHandle& robot
   const float* const dirs = dirs_.data();
   const Eigen::Vector3f* const colours = col.data();
   const float cut_lo = static_cast<float>(cutoff_), cut_hi = static_cast<float>(cutoff_max_);
-  // rows r0..r1 (shade_row): without noise straight to bytes, with noise into rgb_
+  // rows r0..r1 (shade_row): without noise straight to bytes, with noise or 16 bits into rgb_
   const int mode = mono ? 2 : bgr ? 1 : 0;
+  const bool floats = gaussian_ || sixteen_;
   // depth and colour in one pass (with the cloud), or either alone
-  const ShadeRow shade_one = make_colour ? pick_shade_row(mode, make_depth, gaussian_) : depth_row;
+  const ShadeRow shade_one = make_colour ? pick_shade_row(mode, make_depth, floats) : depth_row;
   const Shading sh{hits, dirs, xf, colours, light, bg, ambient, far, cut_lo, cut_hi, f, cy, w_, img, dep, pts, prgb,
                    rgbf};
   auto shade = [shade_one, &sh](int r0, int r1) {
@@ -346,11 +392,97 @@ void CameraPlugin::post_physics(const StepContext& ctx, const RobotHandle& robot
   if (gaussian_ && make_colour) {
     std::normal_distribution<double> noise(noise_mean_, noise_stddev_ > 0 ? noise_stddev_ : 1.0);
     for (int i = 0; i < 3 * n; ++i) rgb_[i] = std::clamp(rgb_[i] + static_cast<float>(noise(rng_)), 0.f, 1.f);
+  }
+  if (floats && make_colour && !sixteen_) {
     for (int i = 0; i < n; ++i)
       put_pixel(mode, pixel_bytes(rgb_[3 * i], rgb_[3 * i + 1], rgb_[3 * i + 2]), img + channels * i,
                 prgb ? prgb + 3 * i : nullptr);
   }
+  if (sixteen_ && make_colour) {
+    // [0, 1] to 0..65535 rounded, little-endian; the cloud's colour stays 8 bits
+    auto put16 = [](uint8_t* p, uint16_t x) {
+      p[0] = static_cast<uint8_t>(x & 0xff);
+      p[1] = static_cast<uint8_t>(x >> 8);
+    };
+    for (int i = 0; i < n; ++i) {
+      const float* c = &rgb_[3 * i];
+      const uint16_t r = static_cast<uint16_t>(c[0] * 65535.f + 0.5f), g = static_cast<uint16_t>(c[1] * 65535.f + 0.5f),
+                     b = static_cast<uint16_t>(c[2] * 65535.f + 0.5f);
+      uint8_t* px = img + 2 * channels * static_cast<size_t>(i);
+      if (mono) {
+        put16(px, static_cast<uint16_t>(0.299f * r + 0.587f * g + 0.114f * b + 0.5f));
+      } else {
+        put16(px, r);
+        put16(px + 2, g);
+        put16(px + 4, b);
+      }
+      if (prgb) {
+        const PixelBytes pb = pixel_bytes(c[0], c[1], c[2]);
+        prgb[3 * i] = pb.r, prgb[3 * i + 1] = pb.g, prgb[3 * i + 2] = pb.b;
+      }
+    }
+  }
+  if (distorted_ && make_colour) distort(&o->image, channels * bytes, bytes);
   out->push_back(std::move(o));
+}
+
+void CameraPlugin::make_lens_map() {
+  // OpenCV's plumb_bob model: output pixel q takes the pinhole point p with distort(p) = q, found as
+  // cv::undistortPoints does (fixed-point iterations from p = q)
+  const double k1 = lens_[0], k2 = lens_[1], k3 = lens_[2], p1 = lens_[3], p2 = lens_[4];
+  const double f = proto_.f;
+  lens_map_.resize(2 * static_cast<size_t>(w_) * h_);
+  for (int v = 0; v < h_; ++v) {
+    for (int u = 0; u < w_; ++u) {
+      // [1] normalised coordinates of q, then of p
+      const double xd = (u - lens_cx_) / f, yd = (v - lens_cy_) / f;
+      double x = xd, y = yd;
+      for (int it = 0; it < 20; ++it) {
+        const double r2 = x * x + y * y;
+        const double icdist = 1.0 / (1.0 + ((k3 * r2 + k2) * r2 + k1) * r2);
+        const double dx = 2 * p1 * x * y + p2 * (r2 + 2 * x * x);
+        const double dy = p1 * (r2 + 2 * y * y) + 2 * p2 * x * y;
+        x = (xd - dx) * icdist;
+        y = (yd - dy) * icdist;
+      }
+      // [px] p in the pinhole frame
+      const size_t k = static_cast<size_t>(v) * w_ + u;
+      lens_map_[2 * k] = x * f + lens_cx_;
+      lens_map_[2 * k + 1] = y * f + lens_cy_;
+    }
+  }
+}
+
+void CameraPlugin::distort(FrameBuffer<uint8_t>* image, int pixel_bytes, int channel_bytes) const {
+  // each output pixel sampled bilinearly at its pinhole point (lens_map_); black outside the frame
+  const FrameBuffer<uint8_t> src = *image;
+  const int nc = pixel_bytes / channel_bytes;
+  auto at = [&](int u, int v, int ch) -> double {
+    const uint8_t* p = &src[(static_cast<size_t>(v) * w_ + u) * pixel_bytes + ch * channel_bytes];
+    return channel_bytes == 2 ? static_cast<double>(p[0] | (p[1] << 8)) : static_cast<double>(p[0]);
+  };
+  const size_t n = static_cast<size_t>(w_) * h_;
+  for (size_t k = 0; k < n; ++k) {
+    const double pu = lens_map_[2 * k], pv = lens_map_[2 * k + 1];
+    uint8_t* out = &(*image)[k * pixel_bytes];
+    const int u0 = static_cast<int>(std::floor(pu)), v0 = static_cast<int>(std::floor(pv));
+    if (!(u0 >= 0 && v0 >= 0 && u0 + 1 < w_ && v0 + 1 < h_)) {
+      std::memset(out, 0, pixel_bytes);
+      continue;
+    }
+    const double a = pu - u0, b = pv - v0;
+    for (int ch = 0; ch < nc; ++ch) {
+      const double val = (1 - a) * (1 - b) * at(u0, v0, ch) + a * (1 - b) * at(u0 + 1, v0, ch) +
+                         (1 - a) * b * at(u0, v0 + 1, ch) + a * b * at(u0 + 1, v0 + 1, ch);
+      const long q = std::lround(val);
+      if (channel_bytes == 2) {
+        out[2 * ch] = static_cast<uint8_t>(q & 0xff);
+        out[2 * ch + 1] = static_cast<uint8_t>(q >> 8);
+      } else {
+        out[ch] = static_cast<uint8_t>(q);
+      }
+    }
+  }
 }
 
 void CameraOut::visit(FieldVisitor& v) const {
@@ -362,7 +494,9 @@ void CameraOut::visit(FieldVisitor& v) const {
   v.text("encoding", encoding);
   const size_t H = static_cast<size_t>(height), W = static_cast<size_t>(width);
   // the parts this frame has (all of them unless set_parts left some out)
-  if (!image.empty()) v.array("image", image.data(), {H, W, encoding == "mono8" ? size_t(1) : size_t(3)});
+  // 16-bit encodings: a last axis of the channel's two bytes, little-endian
+  if (!image.empty() && channel_bytes() == 1) v.array("image", image.data(), {H, W, size_t(channels())});
+  if (!image.empty() && channel_bytes() == 2) v.array("image", image.data(), {H, W, size_t(channels()), 2});
   if (!has_depth) return;
   if (!depth.empty()) v.array("depth", depth.data(), {H, W});
   if (!points.empty()) v.array("points", points.data(), {H, W, 3});

@@ -3,6 +3,7 @@
 // the world's ambient and directional light; depth, optical points and colour per pixel.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <new>
 #include <random>
@@ -47,14 +48,21 @@ struct CameraOut : Output {
   std::string sensor;
   int width = 0, height = 0;
   double f = 0, cx = 0, cy = 0;    // [px] one focal length; cx = (W-1)/2, cy = (H-1)/2
-  std::string encoding;            // "rgb8", "bgr8", "mono8"
-  FrameBuffer<uint8_t> image;      // row-major, top row first
+  std::string encoding;            // "rgb8", "bgr8", "mono8", "rgb16", "mono16"
+  FrameBuffer<uint8_t> image;      // row-major, top row first; 16-bit channels little-endian
   bool has_depth = false;          // a depth camera (its depth, points and point_rgb are made when taken)
   FrameBuffer<float> depth;        // [m] along the optical axis; NaN outside (cutoff, cutoff_max) and for no hit
   FrameBuffer<float> points;       // x y z per pixel [m], optical frame (z forward, x right, y down); NaN with depth
   FrameBuffer<uint8_t> point_rgb;  // r g b per pixel
+  // Channels per pixel (1 mono, 3 colour) and bytes per channel (2 for the 16-bit encodings).
+  int channels() const { return encoding.compare(0, 4, "mono") == 0 ? 1 : 3; }
+  int channel_bytes() const { return encoding.size() > 2 && encoding.compare(encoding.size() - 2, 2, "16") == 0 ? 2 : 1; }
+  size_t step() const { return static_cast<size_t>(width) * channels() * channel_bytes(); }  // [bytes] per row
   void visit(FieldVisitor& v) const override;
 };
+
+// The image encoding of a sensor <format> (docs/COMPAT-sensors.md "16-bit images"); "" for an unknown one.
+std::string camera_encoding(const std::string& format);
 
 // The <sensor type="camera|depth"> keys every camera kind reads (SDF 1.6 defaults).
 const std::vector<ParamDef>& camera_sensor_schema();
@@ -83,14 +91,23 @@ class CameraPlugin : public Plugin {
   int w_ = 0, h_ = 0;
   double near_ = 0.1, far_ = 100.0, cutoff_ = 0.0, cutoff_max_ = 0.0;
   bool gaussian_ = false;
+  bool sixteen_ = false;  // 16 bits a channel: shaded as [0, 1] floats (rgb_), then rounded to 0..65535
   double noise_mean_ = 0, noise_stddev_ = 0;
   // Each pixel's ray: unit direction in the sensor frame (its x is the depth per unit distance), in pixel order.
   Pinhole pinhole_;
   std::vector<float> dirs_;
-  std::vector<float> rgb_;  // [0, 1] per channel, before rounding (with noise only)
+  std::vector<float> rgb_;  // [0, 1] per channel, before rounding (with noise or 16 bits only)
   float t_far_ = 0;
   std::vector<RayHit> hits_;
   uint32_t parts_ = ~0u;  // kCamera* bits someone takes
+  // <camera><distortion>: k1 k2 k3 p1 p2, centre [px] (pixel index coordinates); any non-zero: distorted_
+  std::array<double, 5> lens_{};
+  double lens_cx_ = 0, lens_cy_ = 0;
+  bool distorted_ = false;
+  std::vector<double> lens_map_;  // [px] per output pixel: its point (u, v) in the pinhole frame
+  void make_lens_map();
+  // The frame's colour image resampled through the lens (docs/COMPAT-sensors.md "Lens distortion").
+  void distort(FrameBuffer<uint8_t>* image, int pixel_bytes, int channel_bytes) const;
 };
 
 const PluginKind& camera_kind();

@@ -16,7 +16,7 @@ sensor_msgs::Image camera_image(const car_sim::CameraOut& o, const std::string& 
   im.width = o.width;
   im.encoding = o.encoding;
   im.is_bigendian = 0;
-  im.step = o.width * (o.encoding == "mono8" ? 1 : 3);
+  im.step = static_cast<uint32_t>(o.step());
   im.data.assign(o.image.begin(), o.image.end());
   return im;
 }

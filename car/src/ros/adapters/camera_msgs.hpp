@@ -122,7 +122,7 @@ inline uint32_t image_length(const car_ros::FrameView& v, const std::string& enc
   return header_length(v) + 4 + 4 + 4 + static_cast<uint32_t>(encoding.size()) + 1 + 4 + 4 + bytes;
 }
 inline uint32_t image_step(const car_sim::CameraOut& o) {
-  return static_cast<uint32_t>(o.width) * (o.encoding == "mono8" ? 1 : 3);
+  return static_cast<uint32_t>(o.step());
 }
 }  // namespace car_views
 

@@ -29,6 +29,7 @@ std::unique_ptr<Adapter> make_hector_magnetic_adapter();
 std::unique_ptr<Adapter> make_hector_gps_adapter();
 std::unique_ptr<Adapter> make_hector_imu_adapter();
 std::unique_ptr<Adapter> make_multicamera_adapter();
+std::unique_ptr<Adapter> make_triggered_camera_adapter();
 std::unique_ptr<Adapter> make_ros_control_adapter();
 
 namespace {
@@ -59,6 +60,7 @@ const AdapterKind kAdapters[] = {
     {"hector_gps", make_hector_gps_adapter},
     {"hector_imu", make_hector_imu_adapter},
     {"multicamera", make_multicamera_adapter},
+    {"triggered_camera", make_triggered_camera_adapter},
     {"ros_control", make_ros_control_adapter},
 };
 
