@@ -13,12 +13,13 @@ import pytest
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 
-# rtf 1: the node is a separate process that reacts after some wall milliseconds, which at rtf r are r times as
-# many milliseconds of sim time. At rtf 10 a machine at load 10 made it too late to turn (2 failures in 12 runs,
-# docs/BENCH.md); at rtf 1 its lag in sim time is what it would be on the robot, and the simulator slows with it.
+# rtf 0 in lockstep: after each /scan the simulator waits for the node's /cmd_vel before it steps on, so the
+# node (a separate process, answering some wall milliseconds later) costs no sim time however busy the machine,
+# and the run is as fast as the node answers (docs/TESTING.md "Lockstep").
 pytestmark = pytest.mark.car_sim(world=os.path.join(ROOT, 'worlds', 'box_house.world'),
                                  robot=os.path.join(ROOT, 'urdf', 'car_camera_lidar04.xacro'), name='car',
-                                 nodes=[[sys.executable, os.path.join(HERE, 'wall_follower.py')]], rtf=1)
+                                 nodes=[[sys.executable, os.path.join(HERE, 'wall_follower.py')]], rtf=0,
+                                 lockstep={'/scan': '/cmd_vel'})
 
 # the car's footprint half-diagonal is about 0.25 m: a scan range below this is a touch [m]
 TOUCH = 0.25
