@@ -98,6 +98,7 @@ HEADERS = {
     'actionlib_msgs/': ('actionlib_msgs', 'libactionlib-msgs-dev'),
     'dynamic_reconfigure/': ('dynamic_reconfigure', 'libdynamic-reconfigure-config-init-mutex-dev'),
     'nodelet/': ('nodelet', 'libnodeletlib-dev'),
+    'topic_tools/': ('topic_tools', 'libtopic-tools-dev'),
     'pluginlib/': ('pluginlib', 'libpluginlib-dev'),
     'urdf_parser/': ('liburdfdom-dev', 'liburdfdom-dev'),
     'urdf_model/': ('liburdfdom-headers-dev', 'liburdfdom-headers-dev'),

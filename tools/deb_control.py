@@ -23,7 +23,7 @@ RUN = {
     'python3-numpy': 'python3-numpy', 'python3-matplotlib': 'python3-matplotlib', 'python3-tqdm': 'python3-tqdm',
     # libraries: dpkg-shlibdeps names the run-time package of each
     'liburdfdom-dev': '', 'libconsole-bridge-dev': '', 'tinyxml2': '', 'libsdformat-dev': '',
-    'libbullet-dev': '', 'libembree-dev': '', 'libassimp-dev': '',
+    'libbullet-dev': '', 'libembree-dev': '', 'libassimp-dev': '', 'topic_tools': '',
     # this repository's own packages
     'car': 'ros-car', 'gazebo_msgs': 'ros-car-gazebo-msgs', 'controller_manager_msgs': 'ros-car-controller-manager-msgs',
     'control_msgs': 'ros-car-control-msgs', 'gazebo_ros': 'ros-car-gazebo-ros', 'gazebo': 'ros-car-gazebo',

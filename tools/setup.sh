@@ -34,6 +34,7 @@ DEB_PACKAGES=(
   googletest python3-pytest
   chromium chromium-driver python3-selenium python3-pil
   python3-dynamic-reconfigure libdynamic-reconfigure-config-init-mutex-dev
+  libtopic-tools-dev
 )
 
 missing=()

@@ -28,7 +28,7 @@ def rtf(r, key=None):
     fs = [v for k, v in r.items() if key is None or key in k]
     return sum(f['sim_s'] for f in fs) / sum(f['wall_s'] for f in fs)
 print('runs %d, failed test reports %d' % (n, failed))
-for key, name in ((None, 'suite'), ('test_wall_follower', 'node tests (ROS, rtf 10)'), ('test_sweep', 'car batch sweep')):
+for key, name in ((None, 'suite'), ('test_wall_follower', 'node tests (ROS, lockstep)'), ('test_sweep', 'car batch sweep')):
     v = [rtf(r, key) for r in runs]
     print('%-26s rtf median %.2f  min %.2f  max %.2f  (sim s per run %.1f)' % (
         name, statistics.median(v), min(v), max(v),

@@ -31,6 +31,8 @@ class NodeContext {
   // they were posted (src/ros/publish_queue.hpp).
   template <class P, class M>
   void publish(const P& pub, M msg) {
+    // lockstep (docs/COMPAT-dropins.md): which topics a step published, and to how many
+    if (watch_published_) published(pub.getTopic(), pub.getNumSubscribers());
     const size_t bytes = ros::serialization::serializationLength(msg);
     post([pub, m = std::move(msg)] { pub.publish(m); }, bytes);
   }
@@ -49,6 +51,9 @@ class NodeContext {
  protected:
   // A job for the publishing thread, with its size [bytes] for the queue's bound.
   virtual void post(std::function<void()> job, size_t bytes) = 0;
+  // A message was posted on topic while it had `subscribers` subscribers (only while watch_published_).
+  virtual void published(const std::string& topic, uint32_t subscribers) {}
+  bool watch_published_ = false;
 };
 
 class Adapter {

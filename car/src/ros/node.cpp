@@ -66,6 +66,8 @@ bool SimNode::init() {
   log_world(world_file);
   // world models with plug-ins or sensors are robots from the start: their topics (docs/COMPAT-sdf.md 16)
   for (const auto& name : world_->robot_names()) make_io(name);
+  // after the world robots' plug-ins subscribed: the answers' callbacks come after theirs
+  watch_published_ = lockstep_.configure(nh_, pnh_);
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
   if (ros_network) {
     model_states_pub_ = gz_.advertise<gazebo_msgs::ModelStates>("model_states", 100);
@@ -92,6 +94,8 @@ void SimNode::run() {
     }
     if (paused_) {
       repace_ = true;
+      // time paused does not count against the lockstep guard
+      if (watch_published_) lockstep_.resume(clock::now());
       // keep /clock alive while paused, at 10 Hz of wall time
       auto now = clock::now();
       if (now - last_paused_clock > std::chrono::milliseconds(100)) {
@@ -105,6 +109,19 @@ void SimNode::run() {
       publisher_.wake();
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
       continue;
+    }
+    if (watch_published_) {
+      if (lockstep_.waiting(clock::now())) {
+        // the trigger's answer (and any other callback) is run the moment it is queued; before it, everything
+        // published so far has been sent, as for spinOnce above
+        publisher_.flush();
+        callbacks.callAvailable(ros::WallDuration(0.001));
+        lockstep_waited_ = true;
+        continue;
+      }
+      // the wait is not made up by pacing afterwards
+      if (lockstep_waited_) repace_ = true;
+      lockstep_waited_ = false;
     }
     if (repace_) {
       // (re)start pacing at the start, after a pause, a reset or a new real-time factor
@@ -126,6 +143,11 @@ void SimNode::run() {
     // real-time factor: looked at every 100 steps (a clock read), published once a wall second
     if (world_->tick() % 100 == 0) publish_performance();
     publisher_.release(std::chrono::milliseconds(1));
+    if (lockstep_.fired()) {
+      // a trigger went out to someone: hand it to the transport, then wait for the answer before the next step
+      publisher_.flush();
+      lockstep_.begin(clock::now(), stamp(world_->tick()).toSec());
+    }
     if (iters_ > 0 && --iters_ == 0) {
       // gzserver --iters N: N steps, then the server exits
       ROS_INFO("car: --iters reached at %.3f s of sim time: shutting down", stamp(world_->tick()).toSec());
@@ -285,6 +307,8 @@ void SimNode::make_io(const std::string& name) {
     io.plugins.push_back(std::move(pio));
   }
   io_[name] = std::move(io);
+  // the new plug-ins subscribed after lockstep's answers: subscribe those again, to come last
+  lockstep_.resubscribe();
 }
 
 }  // namespace car_ros

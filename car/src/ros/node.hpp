@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "adapter.hpp"
+#include "lockstep.hpp"
 #include "pacer.hpp"
 #include "publish_queue.hpp"
 #include "car_sim/world.hpp"
@@ -68,6 +69,7 @@ class SimNode : public NodeContext {
 
  protected:
   void post(std::function<void()> job, size_t bytes) override { publisher_.post(std::move(job), bytes); }
+  void published(const std::string& topic, uint32_t subscribers) override { lockstep_.published(topic, subscribers); }
 
  private:
   // One adapter per plug-in instance of a robot.
@@ -146,6 +148,9 @@ class SimNode : public NodeContext {
   // docs/COMPAT-dropins.md: car-only topics per robot (joint_states, /gazebo/ground_truth/<model>); stop after
   // ~iters steps (gzserver --iters, 0 = never); dynamic_reconfigure server (type-erased) and performance metrics
   bool car_extras_ = true;
+  // ~lockstep: steps wait for the node under test's answer to a trigger topic (docs/COMPAT-dropins.md)
+  Lockstep lockstep_;
+  bool lockstep_waited_ = false;  // the loop waited for an answer since the last step
   int64_t iters_ = 0;
   std::shared_ptr<void> reconfigure_;
   bool reconfigure_ready_ = false;

@@ -241,6 +241,8 @@ bool SimNode::reset_simulation(std_srvs::Empty::Request&, std_srvs::Empty::Respo
   world_->reset();
   // the schedule restarts from now at tick 0
   repace_ = true;
+  // no step waits for an answer to a trigger of the run before
+  lockstep_.reset();
   ROS_INFO("car: simulation reset: time 0, every model where it started");
   publish_clock();
   return true;
@@ -513,8 +515,11 @@ bool SimNode::set_physics(gazebo_msgs::SetPhysicsProperties::Request& req,
                          " s) while running; set <max_step_size> in the world";
     return true;
   }
-  world_->set_gravity(g);
-  if (req.ode_config.sor_pgs_iters > 0) world_->set_solver_iterations(static_cast<int>(req.ode_config.sor_pgs_iters));
+  // only a change reaches the physics: setting gravity wakes every rigid body, and car.testing's waits call this
+  // service to change the pace alone (the same gravity back), at ticks that depend on the wall clock
+  if (g != world_->gravity()) world_->set_gravity(g);
+  if (req.ode_config.sor_pgs_iters > 0 && static_cast<int>(req.ode_config.sor_pgs_iters) != world_->solver_iterations())
+    world_->set_solver_iterations(static_cast<int>(req.ode_config.sor_pgs_iters));
   rtf_ = req.max_update_rate * world_->dt();
   repace_ = true;
   ROS_INFO("car: physics updated: gravity (%g %g %g) m/s^2, real-time factor %g, solver %d iterations", g.x(), g.y(),

@@ -32,7 +32,7 @@ def pytest_addoption(parser):
 def pytest_configure(config):
     config.addinivalue_line(
         'markers', 'car_sim(world=None, robot=None, name="robot", pose=(x, y, yaw), launch=None, launch_args=None, '
-                   'nodes=[argv, ...], rtf=None): the simulator of this module (or test, with --car-scope function); relative paths '
+                   'nodes=[argv, ...], rtf=None, lockstep={trigger: response}, lockstep_timeout=5.0): the simulator of this module (or test, with --car-scope function); relative paths '
                    'are taken from the test file\'s folder')
     # rospy 1.15's threads call the deprecated notifyAll() thousands of times a run: not the user's to fix
     config.addinivalue_line('filterwarnings', 'ignore:notifyAll\\(\\) is deprecated:DeprecationWarning')

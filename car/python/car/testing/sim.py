@@ -82,6 +82,11 @@ def shutdown_master():
         _master['proc'] = None
 
 
+def rospy_name():
+    import rospy
+    return rospy.get_name() if rospy.core.is_initialized() else '/car_testing'
+
+
 def ensure_node():
     """Initialises this process's rospy node (once), with /use_sim_time set so rospy.get_time() is sim time."""
     import rosgraph
@@ -236,10 +241,20 @@ class Sim:
 
     world: a .world file (None: car's empty world). robot: a URDF, xacro or SDF file (or XML), spawned as
     `name` at `pose` (x, y, yaw). launch: a launch file started after the robot is spawned (the user's nodes),
-    with launch_args {name: value}. nodes: command lines (lists) of more processes to start (the user's nodes). rtf: real-time factor (0 = as fast as possible). seed: the noise seed."""
+    with launch_args {name: value}. nodes: command lines (lists) of more processes to start (the user's nodes).
+    rtf: real-time factor (0 = as fast as possible). seed: the noise seed. lockstep: {trigger topic: response
+    topic}: after a step that publishes the trigger the simulator waits for the node under test's answer on the
+    response (docs/TESTING.md "Lockstep"); lockstep_timeout: [s of wall time] how long one such wait may last."""
 
     def __init__(self, world=None, robot=None, name='robot', pose=(0.0, 0.0, 0.0), launch=None, launch_args=None,
-                 rtf=0.0, seed=0, use_existing_master=False, log_dir=None, hang_s=60.0, trajectory_rate=20.0, nodes=()):
+                 rtf=0.0, seed=0, use_existing_master=False, log_dir=None, hang_s=60.0, trajectory_rate=20.0, nodes=(),
+                 lockstep=None, lockstep_timeout=5.0):
+        self.lockstep = dict(lockstep or {})
+        self.lockstep_timeout = float(lockstep_timeout)
+        for trigger, response in self.lockstep.items():
+            if not (isinstance(trigger, str) and isinstance(response, str) and trigger and response
+                    and ':' not in trigger + response and ' ' not in trigger + response):
+                raise ValueError('lockstep: {trigger: response} of topic names, got %r: %r' % (trigger, response))
         self.world, self.robot, self.name, self.start_pose = world, robot, name, tuple(pose)
         self.launch, self.launch_args = launch, dict(launch_args or {})
         self.nodes = [list(n) for n in nodes]
@@ -274,6 +289,9 @@ class Sim:
                 # ground truth for the failure plot at 20 Hz of sim time: at rtf 0 every message costs this
                 # process CPU time, and 100 Hz of ModelStates would slow the run it records
                 '_model_states_rate:=%g' % self.trajectory_rate]
+        if self.lockstep:
+            args += ['_lockstep:=%s' % ','.join('%s:%s' % kv for kv in self.lockstep.items()),
+                     '_lockstep_timeout:=%r' % self.lockstep_timeout]
         self.sim_proc = self._popen(args, 'sim_node.log')
         from gazebo_msgs.srv import GetWorldProperties
         deadline = time.monotonic() + self.hang_s
@@ -300,6 +318,50 @@ class Sim:
         for i, argv in enumerate(self.nodes):
             self._popen(argv, 'node%d.log' % i)
         self.call(GetWorldProperties)
+        if self.lockstep:
+            self._wait_lockstep_peers()
+
+    def _wait_lockstep_peers(self):
+        """Waits (wall time, paused; the hang guard bounds it) until, for each lockstep pair, some node subscribes
+        to the trigger and publishes the response, and the simulator is connected to it both ways: else the first
+        triggers would go out before the node under test listens, unanswered."""
+        import rosgraph
+        from xmlrpc.client import ServerProxy
+        master = rosgraph.Master(rospy_name())
+        sim_uri = None
+        deadline = time.monotonic() + self.hang_s
+        missing = dict(self.lockstep)
+        while missing:
+            if time.monotonic() > deadline:
+                raise AssertionError('lockstep: no node subscribes to %s and publishes %s, connected to the simulator '
+                                     '(waited %.0f s of wall time)' % (', '.join(missing), ', '.join(missing.values()),
+                                                                       self.hang_s))
+            if self.sim_proc.poll() is not None:
+                raise RuntimeError('car.testing: sim_node exited (%s):\n%s'
+                                   % (self.sim_proc.returncode, self.log_tail('sim_node.log')))
+            try:
+                pubs, subs, _ = master.getSystemState()
+                if sim_uri is None:
+                    sim_uri = master.lookupNode('/gazebo')
+                bus = ServerProxy(sim_uri).getBusInfo(rospy_name())[2]
+            except Exception:
+                time.sleep(0.05)
+                continue
+            publishers = {t: set(n) for t, n in pubs}
+            subscribers = {t: set(n) for t, n in subs}
+            # (direction, topic, peer): peer is the subscriber's name (out) or the publisher's URI (in)
+            links = {(c[2], c[4], c[1]) for c in bus if len(c) > 4}
+            for trigger, response in list(missing.items()):
+                for peer in (publishers.get(response, set()) & subscribers.get(trigger, set())) - {'/gazebo'}:
+                    try:
+                        peer_uri = master.lookupNode(peer)
+                    except Exception:
+                        continue
+                    if ('o', trigger, peer) in links and ('i', response, peer_uri) in links:
+                        del missing[trigger]
+                        break
+            if missing:
+                time.sleep(0.05)
 
     @staticmethod
     def _find_sim_node():
