@@ -136,7 +136,8 @@ CMAKE = {
 }
 
 # Python files that are not code of a catkin package's own (test helpers import each other by name).
-SKIP_DIRS = {'.git', '.ws', '.venv', '__pycache__', 'bench/out', 'car/bench/out', 'node_modules'}
+SKIP_DIRS = {'.git', '.ws', '.venv', '__pycache__', 'bench/out', 'car/bench/out', 'node_modules', 'dist'}
+# and every dot-folder: build trees (.ws-debs, .ws-asan, ...) hold generated code that is not the repository's
 
 IMPORT_RE = re.compile(r'^\s*(?:from\s+([A-Za-z_][\w.]*)\s+import|import\s+([A-Za-z_][\w.]*(?:\s*,\s*[A-Za-z_][\w.]*)*))')
 INCLUDE_RE = re.compile(r'^\s*#\s*include\s*<([^>]+)>')
@@ -146,7 +147,7 @@ FIND_RE = re.compile(r'find_package\(\s*(\w+)')
 def python_files(root):
     for d, dirs, files in os.walk(root):
         rel = os.path.relpath(d, root)
-        dirs[:] = [x for x in dirs if x not in SKIP_DIRS and os.path.join(rel, x).lstrip('./') not in SKIP_DIRS]
+        dirs[:] = [x for x in dirs if x not in SKIP_DIRS and not x.startswith('.') and os.path.join(rel, x).lstrip('./') not in SKIP_DIRS]
         for f in files:
             p = os.path.join(d, f)
             if f.endswith('.py'):
@@ -160,7 +161,7 @@ def python_files(root):
 
 def cpp_files(root):
     for d, dirs, files in os.walk(root):
-        dirs[:] = [x for x in dirs if x not in SKIP_DIRS]
+        dirs[:] = [x for x in dirs if x not in SKIP_DIRS and not x.startswith('.')]
         for f in files:
             if f.endswith(('.cpp', '.hpp', '.h', '.cc')):
                 yield os.path.join(d, f)
@@ -170,7 +171,7 @@ def catkin_packages(root):
     """{folder: (name, set of declared keys)} for every package.xml in the repository."""
     out = {}
     for d, dirs, files in os.walk(root):
-        dirs[:] = [x for x in dirs if x not in SKIP_DIRS]
+        dirs[:] = [x for x in dirs if x not in SKIP_DIRS and not x.startswith('.')]
         if 'package.xml' in files:
             tree = ET.parse(os.path.join(d, 'package.xml')).getroot()
             keys = {e.text.strip() for e in tree if e.text and e.tag.endswith('depend')}
@@ -209,7 +210,7 @@ def local_modules(root):
     scripts/, and the catkin packages' names (generated messages)."""
     names = set()
     for d, dirs, files in os.walk(root):
-        dirs[:] = [x for x in dirs if x not in SKIP_DIRS]
+        dirs[:] = [x for x in dirs if x not in SKIP_DIRS and not x.startswith('.')]
         for f in files:
             if f.endswith('.py'):
                 names.add(f[:-3])
@@ -283,7 +284,7 @@ def check(root):
                 continue
             need(path, 'line %d includes <%s>' % (n, inc), *HEADERS[best])
     for d, dirs, files in os.walk(root):
-        dirs[:] = [x for x in dirs if x not in SKIP_DIRS]
+        dirs[:] = [x for x in dirs if x not in SKIP_DIRS and not x.startswith('.')]
         for f in files:
             if not f.endswith(('.launch', '.test', '.xml')) or f == 'package.xml':
                 continue

@@ -148,6 +148,14 @@ void SimNode::run() {
       publisher_.flush();
       lockstep_.begin(clock::now(), stamp(world_->tick()).toSec());
     }
+    if (pause_at_tick_ > 0 && world_->tick() >= pause_at_tick_) {
+      // ~pause_at reached: paused after exactly this step, and its time sent at once
+      pause_at_tick_ = 0;
+      paused_ = true;
+      publish_clock();
+      publisher_.flush();
+      continue;
+    }
     if (iters_ > 0 && --iters_ == 0) {
       // gzserver --iters N: N steps, then the server exits
       ROS_INFO("car: --iters reached at %.3f s of sim time: shutting down", stamp(world_->tick()).toSec());

@@ -152,6 +152,7 @@ class SimNode : public NodeContext {
   Lockstep lockstep_;
   bool lockstep_waited_ = false;  // the loop waited for an answer since the last step
   int64_t iters_ = 0;
+  uint64_t pause_at_tick_ = 0;  // ~pause_at: the step after which the run pauses itself (0 = none)
   std::shared_ptr<void> reconfigure_;
   bool reconfigure_ready_ = false;
   ros::Publisher performance_pub_;

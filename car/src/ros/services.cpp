@@ -241,8 +241,9 @@ bool SimNode::reset_simulation(std_srvs::Empty::Request&, std_srvs::Empty::Respo
   world_->reset();
   // the schedule restarts from now at tick 0
   repace_ = true;
-  // no step waits for an answer to a trigger of the run before
+  // no step waits for an answer to a trigger of the run before, and no pause is due
   lockstep_.reset();
+  pause_at_tick_ = 0;
   ROS_INFO("car: simulation reset: time 0, every model where it started");
   publish_clock();
   return true;
@@ -256,10 +257,24 @@ bool SimNode::reset_world(std_srvs::Empty::Request&, std_srvs::Empty::Response&)
 
 bool SimNode::pause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   paused_ = true;
+  pause_at_tick_ = 0;
   return true;
 }
 
 bool SimNode::unpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  // car extra (docs/COMPAT-dropins.md "Pause at"): ~pause_at [s of sim time], set just before this call, makes the
+  // run pause itself at the first step at or after that time. Read once here, then deleted: the parameter server
+  // answers before the service call is made, so the order is certain, unlike a topic beside the call.
+  double at = 0.0;
+  if (pnh_.getParam("pause_at", at)) {
+    pnh_.deleteParam("pause_at");
+    const double now = stamp(world_->tick()).toSec();
+    if (std::isfinite(at) && at > now) {
+      pause_at_tick_ = world_->tick() + static_cast<uint64_t>(std::ceil((at - now) / world_->dt() - 1e-9));
+    } else {
+      ROS_WARN("car: ~pause_at %g is not after the sim time %.3f s: ignored", at, now);
+    }
+  }
   paused_ = false;
   return true;
 }

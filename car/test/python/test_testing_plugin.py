@@ -29,12 +29,12 @@ def run_pytest(tmp_path, body, *args, name='test_user.py'):
 
 
 def test_run_for_stops_at_its_target_and_the_test_passes(tmp_path):
-    # run_for(1.5) from sim time 0 stops at 1.5 s plus at most a few 1 ms steps; the robot, given no command,
-    # stays where it was spawned (0, 0)
+    # run_for(1.5) from sim time 0 pauses after step 1500 of 1 ms, exactly, whatever the load (the simulator
+    # pauses itself); the robot, given no command, stays where it was spawned (0, 0)
     r = run_pytest(tmp_path, '''
 def test_it(sim):
     t = sim.run_for(1.5)
-    assert 1.5 <= t <= 1.52, t
+    assert t == 1.5, t
     p = sim.pose('bot')
     assert abs(p.x) < 1e-3 and abs(p.y) < 1e-3, p
 ''')

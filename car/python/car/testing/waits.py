@@ -177,17 +177,21 @@ class Pacer:
 
 def _run_paced(clock, t0, deadline, predicate, what, seed, hang_s, lead_wall_s, poll_s=0.002):
     """Unpauses, polls predicate() until it is truthy (returns its value) or sim time reaches deadline (returns
-    None), and pauses. A pause request takes some wall milliseconds to act, and a simulator at rtf 0 can run
-    hundreds of sim seconds per wall second, so the run is paced as it nears the deadline: the real-time factor
-    is set so that what is left takes about lead_wall_s of wall time (never above the run's own factor). That
-    bounds the overshoot to a few steps, and lets a predicate be looked at often enough. The physics does not
-    depend on pacing: the same steps happen either way."""
+    None), and pauses. The simulator pauses itself at the deadline (~pause_at), so a wait that runs out stops at
+    exactly its last step. A predicate that comes true is seen some wall milliseconds later, and a simulator at
+    rtf 0 can run hundreds of sim seconds per wall second, so the run is paced as it nears the deadline: the
+    real-time factor is set so that what is left takes about lead_wall_s of wall time (never above the run's own
+    factor), and the predicate is looked at often enough. The physics does not depend on pacing: the same steps
+    happen either way."""
+    import rospy
     pacer = Pacer()
     fast = pacer.rtf0 if pacer.rtf0 > 0 else float('inf')
     last_t, last_move = t0, time.monotonic()
     # paced from the first step: a factor set after unpausing would come while the simulator runs freely
     if (deadline - t0) / lead_wall_s < fast:
         pacer.set(max((deadline - t0) / lead_wall_s, 0.05))
+    # the deadline itself is exact: the simulator pauses itself there (~pause_at), whatever the load
+    rospy.set_param('/gazebo/pause_at', deadline)
     unpause()
     try:
         while True:
@@ -216,10 +220,29 @@ def _run_paced(clock, t0, deadline, predicate, what, seed, hang_s, lead_wall_s, 
 
 def run_for(clock, seconds, seed=None, hang_s=60.0, lead_wall_s=0.1):
     """Runs the simulation (unpaused, then paused) until its time has moved on by `seconds` from now; returns the
-    sim time [s] it paused at (at or a few steps after the target; see _run_paced)."""
+    sim time [s] it paused at: the first step at or after the target, whatever the machine's load. The simulator
+    pauses itself there (its ~pause_at parameter, read when unpausing; docs/COMPAT-dropins.md "Pause at")."""
+    import rospy
     t0 = sim_now()
     clock.advance_to(t0)
-    _run_paced(clock, t0, t0 + seconds, lambda: False, 'run_for(%g)' % seconds, seed, hang_s, lead_wall_s)
+    target = t0 + seconds
+    what = 'run_for(%g)' % seconds
+    rospy.set_param('/gazebo/pause_at', target)
+    unpause()
+    last_t, last_move = t0, time.monotonic()
+    try:
+        while True:
+            now = sim_now()
+            if now >= target - 1e-9:
+                break
+            if now != last_t:
+                last_t, last_move = now, time.monotonic()
+            elif time.monotonic() - last_move > hang_s:
+                raise AssertionError('%s: sim time stood still at %.3f s for %.0f s of wall time (did the simulator '
+                                     'die or get paused?)%s' % (what, now, hang_s, _seed_text(seed)))
+            time.sleep(0.002)
+    finally:
+        pause()
     t = sim_now()
     clock.advance_to(t)
     return t
