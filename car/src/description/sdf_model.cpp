@@ -442,8 +442,8 @@ SdfRobot load_sdf_model_string(const std::string& xml, const std::string& source
                     "root element is not <sdf>; is this an SDF model?");
   check_includes(root, source_name, base_dir);
   sdf::Root sroot;
-  bool rewritten = false;  // SDF 1.4's bare-text material scripts, read as Gazebo 11 did (validate.hpp)
-  const sdf::Errors errors = sroot.LoadSdfString(detail::rewrite_bare_scripts(xml, &rewritten),
+  bool rewritten = false;  // SDF 1.4's bare-text material scripts and Gazebo 11's pixel format names, read as Gazebo 11 did (validate.hpp)
+  const sdf::Errors errors = sroot.LoadSdfString(detail::read_as_gazebo11(xml, &rewritten),
                                                  parser_config(base_dir.empty() ? std::string() : base_dir + "/x.sdf"));
   if (!errors.empty()) fail_with(source_name, errors);
   const sdf::Model* model = sroot.Model();

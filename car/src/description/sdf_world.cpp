@@ -316,10 +316,10 @@ WorldDescription load_world_file(const std::string& path) {
   if (!probe) throw LoadError(path, 0, "", "cannot open file");
   const std::string text(std::istreambuf_iterator<char>(probe), {});
   detail::prevalidate_sdf(text, path, path.find('/') == std::string::npos ? "." : path.substr(0, path.rfind('/')));
-  // SDF 1.4's bare-text material scripts, read as Gazebo 11 did (validate.hpp): then sdformat reads the rewritten
+  // SDF 1.4's bare-text material scripts and Gazebo 11's pixel format names, read as Gazebo 11 did (validate.hpp): then sdformat reads the rewritten
   // text (includes resolve as from the file; errors name the file)
   bool rewritten = false;
-  const std::string gz11 = detail::rewrite_bare_scripts(text, &rewritten);
+  const std::string gz11 = detail::read_as_gazebo11(text, &rewritten);
   sdf::Root root;
   const sdf::Errors errors = rewritten ? root.LoadSdfString(gz11, parser_config(path)) : root.Load(path, parser_config(path));
   if (!errors.empty()) fail_with(path, errors);
@@ -332,7 +332,7 @@ WorldDescription load_world_string(const std::string& xml, const std::string& so
   detail::prevalidate_sdf(xml, source_name, "");  // validate.cpp
   bool rewritten = false;
   sdf::Root root;
-  const sdf::Errors errors = root.LoadSdfString(detail::rewrite_bare_scripts(xml, &rewritten), parser_config(""));
+  const sdf::Errors errors = root.LoadSdfString(detail::read_as_gazebo11(xml, &rewritten), parser_config(""));
   if (!errors.empty()) fail_with(source_name, errors);
   WorldDescription d = convert(root, source_name);
   load_meshes(&d, "");

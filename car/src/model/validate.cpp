@@ -470,6 +470,38 @@ std::string rewrite_bare_scripts(const std::string& xml, bool* changed) {
   return out;
 }
 
+std::string rewrite_pixel_formats(const std::string& xml, bool* changed) {
+  // Gazebo 11's names that libsdformat 12's camera does not list, and the name it lists for the same format
+  static const std::pair<const char*, const char*> kRenamed[] = {{"R16G16B16", "RGB_INT16"}};
+  static const std::string open = "<format>", close = "</format>";
+  *changed = false;
+  std::string out;
+  size_t from = 0;
+  for (size_t at = xml.find(open); at != std::string::npos; at = xml.find(open, from)) {
+    const size_t text = at + open.size();
+    const size_t end = xml.find(close, text);
+    out.append(xml, from, text - from);
+    from = text;
+    if (end == std::string::npos) continue;
+    const std::string name = trim(xml.substr(text, end - text));
+    for (const auto& [gz11, sdf12] : kRenamed) {
+      if (name != gz11) continue;
+      out += sdf12;
+      from = end;
+      *changed = true;
+    }
+  }
+  out.append(xml, from, std::string::npos);
+  return out;
+}
+
+std::string read_as_gazebo11(const std::string& xml, bool* changed) {
+  bool scripts = false, formats = false;
+  std::string out = rewrite_pixel_formats(rewrite_bare_scripts(xml, &scripts), &formats);
+  *changed = scripts || formats;
+  return out;
+}
+
 bool degenerate_shape(const Shape& s) {
   switch (s.type) {
     case ShapeType::Box: return !(s.size.minCoeff() > 0.0);

@@ -61,6 +61,15 @@ void prevalidate_sdf(const std::string& xml, const std::string& source, const st
 // line (line numbers stay); *changed says whether any was (docs/COMPAT-sdf.md).
 std::string rewrite_bare_scripts(const std::string& xml, bool* changed);
 
+// Gazebo 11 reads a camera's <image><format>R16G16B16</format>; libsdformat 12's camera knows that format only as
+// RGB_INT16 and refuses the old name. Returns the text with each <format>R16G16B16</format> written as
+// <format>RGB_INT16</format> (the same line; car's camera maps both to rgb16); *changed says whether any was.
+std::string rewrite_pixel_formats(const std::string& xml, bool* changed);
+
+// The document as Gazebo 11's sdformat read it, for libsdformat 12: rewrite_bare_scripts, then
+// rewrite_pixel_formats (docs/COMPAT-sdf.md rules 18 and 20). *changed says whether anything was rewritten.
+std::string read_as_gazebo11(const std::string& xml, bool* changed);
+
 // A converted world: step size > 0 and finite, gravity finite, real-time factor finite and >= 0; every model's
 // poses, masses, inertias and shape sizes by the URDF's rules. Throws LoadError for errors; appends warnings to
 // d->diagnostics; degenerate collisions are warned about and removed.

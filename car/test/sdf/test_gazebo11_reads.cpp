@@ -2,8 +2,10 @@
 // give the expected values; docs/COMPAT-sdf.md and docs/COMPAT-validation.md give the rules).
 #include <gtest/gtest.h>
 
+#include "camera/camera.hpp"
 #include "car_sim/world.hpp"
 #include "test_util.hpp"
+#include "validate.hpp"
 
 using namespace car_sim;
 
@@ -63,4 +65,28 @@ TEST(Gazebo11Reads, ZeroBoxOfARobotIsAWarningAndLeftOut) {
             "a size is not > 0; the collision is left out of the collision world (the model is simulated)");
   EXPECT_TRUE(m.find_link("sonar")->collisions.empty());
   EXPECT_EQ(m.find_link("base")->collisions.size(), 1u);
+}
+
+// <format>R16G16B16</format>, which libsdformat 12 refuses and Gazebo 11 reads: the world loads and the camera
+// makes rgb16 images (4 x 2 pixels, 6 bytes each: step 24 bytes, 48 bytes in all).
+TEST(Gazebo11Reads, R16G16B16CameraFormatMakesRgb16) {
+  World w(load_world_file(data_path(kWorld)));
+  w.set_sensor_active("eye16", "eye16_camera", true);
+  w.step(100);
+  const auto frames = w.take_outputs<CameraOut>();
+  ASSERT_EQ(frames.size(), 1u);
+  EXPECT_EQ(frames[0].encoding, "rgb16");
+  EXPECT_EQ(frames[0].step(), 24u);
+  EXPECT_EQ(frames[0].image.size(), 48u);
+}
+
+// The rewrite keeps the element on its line (error line numbers stay right) and leaves other names as written.
+TEST(Gazebo11Reads, PixelFormatRewriteIsInPlace) {
+  bool changed = false;
+  const std::string in = "<image>\n<format> R16G16B16 </format>\n<format>R8G8B8</format>\n</image>";
+  EXPECT_EQ(detail::rewrite_pixel_formats(in, &changed),
+            "<image>\n<format>RGB_INT16</format>\n<format>R8G8B8</format>\n</image>");
+  EXPECT_TRUE(changed);
+  EXPECT_EQ(detail::rewrite_pixel_formats("<format>R8G8B8</format>", &changed), "<format>R8G8B8</format>");
+  EXPECT_FALSE(changed);
 }
