@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "car_sim/description.hpp"
+#include "geometry.hpp"
 #include "lumping.hpp"
 #include "validate.hpp"
 #include "xml_util.hpp"
@@ -43,6 +44,16 @@ void fail_with(const std::string& source, const sdf::Errors& errors) {
   throw LoadError(in_file ? *e.FilePath() : source, e.LineNumber() ? *e.LineNumber() : 0,
                   e.XmlPath() ? *e.XmlPath() : "", reason);
 }
+
+}  // namespace detail
+
+// The geometry to_shape converts (its switch below); keep the two together.
+const std::vector<std::string>& simulated_geometry() {
+  static const std::vector<std::string> kNames = {"box", "cylinder", "sphere", "plane", "mesh"};
+  return kNames;
+}
+
+namespace detail {
 
 // Rule 9: box, cylinder, sphere, mesh, plane; anything else is skipped with a warning (the world loader too).
 std::optional<Shape> to_shape(const sdf::Geometry& g, const std::string& where, int line,
