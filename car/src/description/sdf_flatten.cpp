@@ -156,7 +156,8 @@ class Flattener {
         const std::string here = where + "/include[" + std::to_string(i) + "]";
         std::string body_dir, body_file;
         tinyxml2::XMLElement* body = load_included(child, base_dir, file, here, &body_dir, &body_file);
-        if (const auto name = find_text(child, "name"); name && !name->empty()) body->SetAttribute("name", detail::trim(*name).c_str());
+        if (const auto name = find_text(child, "name"); name && !name->empty())
+          body->SetAttribute("name", detail::trim(*name).c_str());
         if (const auto pose = find_text(child, "pose")) {
           parse_pose(*pose, file, here + "/pose");
           set_child(body, "pose", detail::trim(*pose));
