@@ -81,6 +81,13 @@ std::vector<std::string> model_path();
 std::string resolve_uri(const std::string& uri);
 std::string resolve_uri(const std::string& uri, const std::string& base_dir);  // relative paths against base_dir
 
+// A world file as one self-contained SDF document (world_tool flatten, docs/TOOLS.md): every <include> replaced
+// by what it names, with its <name>, <pose> and <static> (URIs by resolve_uri, relative ones against the including
+// file's folder; a model folder by its model.config; mesh URIs made absolute), at most 32 includes deep; nested
+// models hoisted to top-level models "parent::child" with composed poses (static when the parent is); the <state>
+// block's model poses applied and the block dropped. Throws LoadError naming file, element and reason.
+std::string flatten_world_file(const std::string& path);
+
 // Gazebo's empty world: a ground plane (mu 100, mu2 50) and a sun, 1 ms step.
 WorldDescription empty_world();
 

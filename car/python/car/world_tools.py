@@ -1,6 +1,9 @@
-"""SDF world tools: resolve and flatten includes, check a world, slice it into a map.
+"""SDF world tools: flatten a world, check it, slice it into a map.
 
-Include rule (the simulator's core applies the same one to the worlds it loads; a test holds the two equal):
+The rules live in the core (car._core): the include rule (car_sim::resolve_uri, model.config, at most 32 includes
+deep), nested models hoisted as 'parent::child', <state> applied (car_sim::flatten_world_file, which the simulator's
+loader shares). This module reads the world as written, writes the flattened text, and checks what the XML shows.
+Include rule:
   model://NAME[/rest]  -> the first folder NAME in GAZEBO_MODEL_PATH (':'-separated, in order), then car's models/
   package://PKG/rest   -> PKG's folder found through ROS_PACKAGE_PATH
   file://PATH, PATH    -> absolute, or relative to the including file's folder
@@ -8,17 +11,11 @@ A folder is a model folder: its model.config names the SDF file (the highest <sd
 """
 from __future__ import annotations
 
-import copy
 import math
-import os
-import sys
 import xml.etree.ElementTree as ET
-
-import numpy as np
 
 KNOWN_GEOMETRY = {'box', 'cylinder', 'sphere', 'plane', 'mesh', 'capsule', 'ellipsoid', 'heightmap', 'image',
                   'polyline', 'empty'}
-SIMULATED_GEOMETRY = {'box', 'cylinder', 'sphere', 'plane'}
 
 
 class WorldError(Exception):
@@ -44,150 +41,24 @@ def resolve_uri(uri: str, base_dir: str) -> str | None:
     return _core.resolve_uri(uri, base_dir) or None
 
 
-def model_sdf_file(folder: str) -> str:
-    """The SDF file a model folder's model.config names (highest version <= 1.9)."""
-    cfg = os.path.join(folder, 'model.config')
-    if not os.path.isfile(cfg):
-        raise WorldError(folder, 'model.config', 'a model folder needs a model.config')
-    best, best_v = None, -1.0
-    for e in parse_file(cfg).getroot().findall('sdf'):
-        try:
-            v = float(e.get('version', '0'))
-        except ValueError:
-            v = 0.0
-        if v <= 1.9 and v > best_v and (e.text or '').strip():
-            best, best_v = e.text.strip(), v
-    if best is None:
-        raise WorldError(cfg, 'model/sdf', 'names no SDF file')
-    return os.path.join(folder, best)
-
-
 # ---- poses --------------------------------------------------------------------------------------------
 
-def parse_pose(text: str | None, file: str, element: str) -> np.ndarray:
-    """4x4 transform of 'x y z roll pitch yaw'; an empty pose is identity."""
+def check_pose(text: str | None, file: str, element: str) -> None:
+    """Raises WorldError unless the text is 'x y z roll pitch yaw', 6 finite numbers, or empty."""
     vals = (text or '').split()
     if not vals:
-        return np.eye(4)
+        return
     try:
         nums = [float(v) for v in vals]
     except ValueError:
         nums = []
     if len(nums) != 6:
         raise WorldError(file, element, "pose '%s' is not 6 numbers (x y z roll pitch yaw)" % (text or '').strip())
-    x, y, z, r, p, yw = nums
-    if not all(math.isfinite(v) for v in (x, y, z, r, p, yw)):
+    if not all(math.isfinite(v) for v in nums):
         raise WorldError(file, element, "pose '%s' has a non-finite value" % text.strip())
-    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(yw), math.sin(yw)
-    T = np.eye(4)
-    T[:3, :3] = [[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                 [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                 [-sp, cp * sr, cp * cr]]
-    T[:3, 3] = (x, y, z)
-    return T
-
-
-def format_pose(T: np.ndarray) -> str:
-    R = T[:3, :3]
-    pitch = math.asin(max(-1.0, min(1.0, -R[2, 0])))
-    roll, yaw = math.atan2(R[2, 1], R[2, 2]), math.atan2(R[1, 0], R[0, 0])
-    vals = list(T[:3, 3]) + [roll, pitch, yaw]
-    return ' '.join(repr(float('%.12g' % v)) if v else '0' for v in vals)
-
-
-def _set_child(e: ET.Element, tag: str, text: str) -> None:
-    c = e.find(tag)
-    if c is None:
-        c = ET.SubElement(e, tag)
-    c.text = text
 
 
 # ---- flatten ------------------------------------------------------------------------------------------
-
-def _absolute_mesh_uris(elem: ET.Element, base_dir: str) -> None:
-    """Mesh URIs inside an included model, made absolute so the output stands alone."""
-    for mesh in elem.iter('mesh'):
-        u = mesh.find('uri')
-        if u is not None and u.text and not u.text.strip().startswith('package://'):
-            p = resolve_uri(u.text, base_dir)
-            if p:
-                u.text = 'file://' + os.path.abspath(p)
-
-
-def _load_included(include: ET.Element, base_dir: str, file: str, where: str) -> tuple:
-    uri_e = include.find('uri')
-    if uri_e is None or not (uri_e.text or '').strip():
-        raise WorldError(file, where, '<include> has no <uri>')
-    uri = uri_e.text.strip()
-    target = resolve_uri(uri, base_dir)
-    if target is None:
-        raise WorldError(file, where + '/uri', "cannot find '%s' (model path: %s)" % (uri, ':'.join(model_path())))
-    sdf_file = model_sdf_file(target) if os.path.isdir(target) else target
-    try:
-        root = parse_file(sdf_file).getroot()
-    except ET.ParseError as e:
-        raise WorldError(sdf_file, '', 'malformed XML: %s' % e)
-    body = next((c for c in root if c.tag in ('model', 'light', 'actor')), None)
-    if body is None:
-        raise WorldError(sdf_file, 'sdf', 'holds no <model> or <light>')
-    return copy.deepcopy(body), os.path.dirname(sdf_file), sdf_file
-
-
-def _expand(parent: ET.Element, base_dir: str, file: str, where: str, depth: int = 0) -> None:
-    """Replaces every <include> below parent by what it includes, with the include's overrides."""
-    if depth > 32:
-        raise WorldError(file, where, 'includes nest deeper than 32 levels (a cycle?)')
-    for i, child in enumerate(list(parent)):
-        if child.tag == 'include':
-            here = '%s/include[%d]' % (where, i)
-            body, body_dir, body_file = _load_included(child, base_dir, file, here)
-            name = child.findtext('name')
-            if name:
-                body.set('name', name.strip())
-            pose = child.find('pose')
-            if pose is not None:
-                parse_pose(pose.text, file, here + '/pose')
-                _set_child(body, 'pose', pose.text.strip())
-            static = child.findtext('static')
-            if static is not None and body.tag == 'model':
-                _set_child(body, 'static', static.strip())
-            _absolute_mesh_uris(body, body_dir)
-            _expand(body, body_dir, body_file, '%s[%s]' % (body.tag, body.get('name')), depth + 1)
-            idx = list(parent).index(child)
-            parent.remove(child)
-            parent.insert(idx, body)
-        elif child.tag == 'model':
-            _expand(child, base_dir, file, '%s/model[%s]' % (where, child.get('name')), depth)
-
-
-def _hoist_nested(world: ET.Element) -> None:
-    """Nested models become top-level models 'parent::child' with composed poses (the core does the same)."""
-    changed = True
-    while changed:
-        changed = False
-        for m in list(world.findall('model')):
-            for n in list(m.findall('model')):
-                Tm = parse_pose(m.findtext('pose'), '', '')
-                Tn = parse_pose(n.findtext('pose'), '', '')
-                n.set('name', '%s::%s' % (m.get('name'), n.get('name')))
-                _set_child(n, 'pose', format_pose(Tm @ Tn))
-                if (m.findtext('static') or '').strip() in ('1', 'true'):
-                    _set_child(n, 'static', 'true')
-                m.remove(n)
-                world.insert(list(world).index(m) + 1, n)
-                changed = True
-
-
-def _apply_state(world: ET.Element) -> None:
-    """Gazebo applies a world's <state> when it loads: model poses there win; the block is then dropped."""
-    for state in world.findall('state'):
-        for sm in state.findall('model'):
-            pose = sm.findtext('pose')
-            for m in world.findall('model'):
-                if m.get('name') == sm.get('name') and pose is not None:
-                    _set_child(m, 'pose', pose.strip())
-        world.remove(state)
-
 
 def parse_file(path: str) -> ET.ElementTree:
     """ET.parse, but the file is fed to expat in one piece: ET.parse feeds 64 kB at a time, and expat (2.5)
@@ -201,27 +72,24 @@ def parse_file(path: str) -> ET.ElementTree:
 
 
 def flatten(path: str) -> ET.ElementTree:
-    """One self-contained world: includes resolved and replaced, nested models hoisted, <state> applied."""
+    """One self-contained world: includes resolved and replaced, nested models hoisted, <state> applied (the core's
+    car_sim::flatten_world_file)."""
+    from car import _core
+    # expat reads the file as written first: its verdicts (malformed XML, entity expansion) are the tools' messages
     try:
-        tree = parse_file(path)
+        parse_file(path)
     except FileNotFoundError:
         raise WorldError(path, '', 'no such file')
     except ET.ParseError as e:
         raise WorldError(path, '', 'malformed XML: %s' % e)
-    root = tree.getroot()
-    if root.tag != 'sdf':
-        raise WorldError(path, root.tag, 'root element is not <sdf>')
-    world = root.find('world')
-    if world is None:
-        raise WorldError(path, 'sdf', 'no <world>')
-    where = 'world[%s]' % world.get('name')
     try:
-        _expand(world, os.path.dirname(os.path.abspath(path)), path, where)
-        _hoist_nested(world)
-        _apply_state(world)
-        ET.indent(tree, space='  ')
-    except RecursionError:
-        raise WorldError(path, where, 'elements nest too deep to read (more than %d levels)' % sys.getrecursionlimit())
+        text = _core.flatten_world(path)
+    except _core.LoadError as e:
+        raise WorldError(e.file, e.element, e.reason)
+    parser = ET.XMLParser(target=ET.TreeBuilder())
+    parser.feed(text.encode('utf-8'))
+    tree = ET.ElementTree(parser.close())
+    ET.indent(tree, space='  ')
     return tree
 
 
@@ -238,7 +106,9 @@ def _finding(severity, code, element, message):
 def _xml_findings(world: ET.Element, file: str) -> list:
     """What can be seen in the flattened XML: poses that do not parse, unknown or unsimulated geometry, meshes
     without a uri."""
+    from car import _core
     out = []
+    simulated = set(_core.simulated_geometry())  # the core's rule (docs/COMPAT-sdf.md rule 9)
     where_world = 'world[%s]' % world.get('name')
 
     def walk(e, path):
@@ -247,7 +117,7 @@ def _xml_findings(world: ET.Element, file: str) -> list:
             here = '%s/%s' % (path, '%s[%s]' % (c.tag, name) if name else c.tag)
             if c.tag == 'pose':
                 try:
-                    parse_pose(c.text, file, here)
+                    check_pose(c.text, file, here)
                 except WorldError as err:
                     out.append(_finding('error', 'pose-malformed', here, err.reason))
             elif c.tag == 'geometry':
@@ -261,7 +131,7 @@ def _xml_findings(world: ET.Element, file: str) -> list:
                                                                                      ', '.join(sorted(KNOWN_GEOMETRY)))))
                     elif g.tag == 'mesh' and not (g.findtext('uri') or '').strip():
                         out.append(_finding('error', 'uri-missing', here + '/mesh', '<mesh> has no <uri>'))
-                    elif g.tag not in SIMULATED_GEOMETRY and g.tag != 'mesh':
+                    elif g.tag not in simulated:
                         out.append(_finding('warning', 'geometry-unsimulated', here + '/' + g.tag,
                                             '<%s> is not simulated by car; ignored' % g.tag))
                 continue

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "car_sim/description.hpp"
+#include "geometry.hpp"
 #include "lumping.hpp"
 #include "validate.hpp"
 #include "xml_util.hpp"
@@ -22,7 +23,7 @@ namespace car_sim {
 sdf::ParserConfig parser_config(const std::string& world_file);  // sdf_world.cpp: the include rule
 void parse_gazebo_extensions(const tinyxml2::XMLElement* robot, RobotModel* model);  // model/gazebo_ext.cpp
 
-namespace {
+namespace detail {
 
 Eigen::Isometry3d to_iso(const ignition::math::Pose3d& p) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -33,19 +34,30 @@ Eigen::Isometry3d to_iso(const ignition::math::Pose3d& p) {
 
 int line_of(const sdf::ElementPtr& e) { return e && e->LineNumber() ? *e->LineNumber() : 0; }
 
-[[noreturn]] void fail_with(const std::string& source, const sdf::Errors& errors) {
+void fail_with(const std::string& source, const sdf::Errors& errors) {
   const sdf::Error& e = errors.front();
   std::string reason = e.Message();
   if (errors.size() > 1) reason += " (and " + std::to_string(errors.size() - 1) + " more)";
   // an error inside an included file names that file; one in the text itself names the source (sdformat calls it
   // "data-string")
-  const bool in_file = e.FilePath() && std::ifstream(*e.FilePath()).good();
+  const bool in_file = e.FilePath() && *e.FilePath() != "data-string" && std::ifstream(*e.FilePath()).good();
   throw LoadError(in_file ? *e.FilePath() : source, e.LineNumber() ? *e.LineNumber() : 0,
                   e.XmlPath() ? *e.XmlPath() : "", reason);
 }
 
-// Rule 9: box, cylinder, sphere, mesh, plane; anything else is skipped with a warning.
-std::optional<Shape> to_shape(const sdf::Geometry& g, const std::string& where, int line, RobotModel* m) {
+}  // namespace detail
+
+// The geometry to_shape converts (its switch below); keep the two together.
+const std::vector<std::string>& simulated_geometry() {
+  static const std::vector<std::string> kNames = {"box", "cylinder", "sphere", "plane", "mesh"};
+  return kNames;
+}
+
+namespace detail {
+
+// Rule 9: box, cylinder, sphere, mesh, plane; anything else is skipped with a warning (the world loader too).
+std::optional<Shape> to_shape(const sdf::Geometry& g, const std::string& where, int line,
+                              std::vector<Diagnostic>* diagnostics) {
   Shape s;
   switch (g.Type()) {
     case sdf::GeometryType::BOX:
@@ -74,11 +86,19 @@ std::optional<Shape> to_shape(const sdf::Geometry& g, const std::string& where, 
       s.mesh_scale = Eigen::Vector3d(g.MeshShape()->Scale().X(), g.MeshShape()->Scale().Y(), g.MeshShape()->Scale().Z());
       return s;
     default:
-      m->diagnostics.push_back({Severity::Warning, "geometry-unsupported", where,
-                                "geometry type not simulated by car; the shape is ignored", line});
+      diagnostics->push_back({Severity::Warning, "geometry-unsupported", where,
+                              "geometry type not simulated by car; the shape is ignored", line});
       return std::nullopt;
   }
 }
+
+}  // namespace detail
+
+using detail::fail_with;
+using detail::line_of;
+using detail::to_iso;
+
+namespace {
 
 // A child element by path ("friction/ode/mu"), nullptr when any step is absent (never creates one).
 sdf::ElementPtr find_path(sdf::ElementPtr e, const std::string& path) {
@@ -151,7 +171,7 @@ Link convert_link(const sdf::Link& l, const std::string& where, RobotModel* m) {
   for (uint64_t i = 0; i < l.CollisionCount(); ++i) {
     const sdf::Collision* c = l.CollisionByIndex(i);
     const std::string here = where + "/collision[" + c->Name() + "]";
-    auto shape = to_shape(*c->Geom(), here, line_of(c->Element()), m);
+    auto shape = detail::to_shape(*c->Geom(), here, line_of(c->Element()), &m->diagnostics);
     if (!shape) continue;
     // a size <= 0: Gazebo 11 warns and simulates the model; car leaves the shape out (docs/COMPAT-validation.md)
     if (detail::degenerate_shape(*shape)) {
@@ -181,7 +201,8 @@ Link convert_link(const sdf::Link& l, const std::string& where, RobotModel* m) {
   }
   for (uint64_t i = 0; i < l.VisualCount(); ++i) {
     const sdf::Visual* v = l.VisualByIndex(i);
-    auto shape = to_shape(*v->Geom(), where + "/visual[" + v->Name() + "]", line_of(v->Element()), m);
+    auto shape =
+        detail::to_shape(*v->Geom(), where + "/visual[" + v->Name() + "]", line_of(v->Element()), &m->diagnostics);
     if (!shape) continue;
     ignition::math::Pose3d vp;
     v->SemanticPose().Resolve(vp);

@@ -1,13 +1,34 @@
 // Internal: an sdformat DOM model to the core's RobotModel (sdf_model.cpp), shared by the SDF robot loader and the
-// world loader (models inside a world that have plug-ins, sensors or joints). docs/COMPAT-sdf.md.
+// world loader (models inside a world that have plug-ins, sensors or joints), with the DOM readers both use: poses,
+// shapes, sdformat's errors. docs/COMPAT-sdf.md.
 #pragma once
 
+#include <sdf/Error.hh>
+#include <sdf/Geometry.hh>
 #include <sdf/Model.hh>
+
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "car_sim/sdf_model.hpp"
 
 namespace car_sim {
 namespace detail {
+
+Eigen::Isometry3d to_iso(const ignition::math::Pose3d& p);
+
+// An element's line in its file; 0 when sdformat does not know it.
+int line_of(const sdf::ElementPtr& e);
+
+// sdformat's first error as a LoadError (with how many more there were). An error inside an included file names
+// that file; one in the text itself names source (sdformat calls such text "data-string").
+[[noreturn]] void fail_with(const std::string& source, const sdf::Errors& errors);
+
+// Rule 9: box, cylinder, sphere, mesh, plane as a Shape (origin identity); anything else is nullopt with a warning
+// at `where` (line: its line, 0 = unknown) appended to *diagnostics.
+std::optional<Shape> to_shape(const sdf::Geometry& g, const std::string& where, int line,
+                              std::vector<Diagnostic>* diagnostics);
 
 // Converts one model; the returned root_pose is the root link in the frame the model's own pose is given in.
 // Throws LoadError naming source, element and reason for what car cannot simulate.

@@ -20,57 +20,9 @@ namespace car_sim {
 
 namespace {
 
-Eigen::Isometry3d to_iso(const ignition::math::Pose3d& p) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.translation() = Eigen::Vector3d(p.Pos().X(), p.Pos().Y(), p.Pos().Z());
-  T.linear() = Eigen::Quaterniond(p.Rot().W(), p.Rot().X(), p.Rot().Y(), p.Rot().Z()).normalized().toRotationMatrix();
-  return T;
-}
-
-[[noreturn]] void fail_with(const std::string& source, const sdf::Errors& errors) {
-  const sdf::Error& e = errors.front();
-  std::string reason = e.Message();
-  if (errors.size() > 1) reason += " (and " + std::to_string(errors.size() - 1) + " more)";
-  // sdformat names text it was given "data-string": the source stands for it
-  const bool named = e.FilePath() && *e.FilePath() != "data-string";
-  throw LoadError(named ? *e.FilePath() : source, e.LineNumber() ? *e.LineNumber() : 0,
-                  e.XmlPath() ? *e.XmlPath() : "", reason);
-}
-
-std::optional<Shape> to_shape(const sdf::Geometry& g, const std::string& where, WorldDescription* desc) {
-  Shape s;
-  switch (g.Type()) {
-    case sdf::GeometryType::BOX:
-      s.type = ShapeType::Box;
-      s.size = Eigen::Vector3d(g.BoxShape()->Size().X(), g.BoxShape()->Size().Y(), g.BoxShape()->Size().Z());
-      return s;
-    case sdf::GeometryType::CYLINDER:
-      s.type = ShapeType::Cylinder;
-      s.radius = g.CylinderShape()->Radius();
-      s.length = g.CylinderShape()->Length();
-      return s;
-    case sdf::GeometryType::SPHERE:
-      s.type = ShapeType::Sphere;
-      s.radius = g.SphereShape()->Radius();
-      return s;
-    case sdf::GeometryType::PLANE: {
-      s.type = ShapeType::Plane;
-      const auto n = g.PlaneShape()->Normal();
-      s.normal = Eigen::Vector3d(n.X(), n.Y(), n.Z()).normalized();
-      s.size = Eigen::Vector3d(g.PlaneShape()->Size().X(), g.PlaneShape()->Size().Y(), 0.0);
-      return s;
-    }
-    case sdf::GeometryType::MESH:
-      s.type = ShapeType::Mesh;
-      s.mesh_uri = g.MeshShape()->Uri();
-      s.mesh_scale = Eigen::Vector3d(g.MeshShape()->Scale().X(), g.MeshShape()->Scale().Y(), g.MeshShape()->Scale().Z());
-      return s;
-    default:
-      desc->diagnostics.push_back({Severity::Warning, "geometry-unsupported", where,
-                                   "geometry type not simulated by car; ignored", 0});
-      return std::nullopt;
-  }
-}
+using detail::fail_with;
+using detail::line_of;
+using detail::to_iso;
 
 bool exists(const std::string& p) {
   struct stat st;
@@ -130,7 +82,8 @@ WorldLink read_link(const sdf::Link& l, const std::string& model, WorldDescripti
   const std::string where = "model[" + model + "]/link[" + l.Name() + "]";
   for (uint64_t i = 0; i < l.CollisionCount(); ++i) {
     const sdf::Collision* c = l.CollisionByIndex(i);
-    auto shape = to_shape(*c->Geom(), where + "/collision[" + c->Name() + "]", desc);
+    auto shape = detail::to_shape(*c->Geom(), where + "/collision[" + c->Name() + "]", line_of(c->Element()),
+                                   &desc->diagnostics);
     if (!shape) continue;
     ignition::math::Pose3d cp;
     c->SemanticPose().Resolve(cp);  // relative to the link
@@ -139,7 +92,8 @@ WorldLink read_link(const sdf::Link& l, const std::string& model, WorldDescripti
   }
   for (uint64_t i = 0; i < l.VisualCount(); ++i) {
     const sdf::Visual* v = l.VisualByIndex(i);
-    auto shape = to_shape(*v->Geom(), where + "/visual[" + v->Name() + "]", desc);
+    auto shape = detail::to_shape(*v->Geom(), where + "/visual[" + v->Name() + "]", line_of(v->Element()),
+                                   &desc->diagnostics);
     if (!shape) continue;
     ignition::math::Pose3d vp;
     v->SemanticPose().Resolve(vp);

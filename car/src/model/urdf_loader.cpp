@@ -185,7 +185,7 @@ Eigen::Isometry3d to_iso(const urdf::Pose& p) {
   return T;
 }
 
-Shape to_shape(const urdf::GeometrySharedPtr& g, const urdf::Pose& origin) {
+Shape urdf_shape(const urdf::GeometrySharedPtr& g, const urdf::Pose& origin) {
   Shape s;
   s.origin = to_iso(origin);
   switch (g->type) {
@@ -331,12 +331,12 @@ class Loader {
       l.inertial = in;
     }
     for (const auto& c : ul.collision_array)
-      if (c && c->geometry) l.collisions.push_back(to_shape(c->geometry, c->origin));
+      if (c && c->geometry) l.collisions.push_back(urdf_shape(c->geometry, c->origin));
     for (const auto& v : ul.visual_array) {
       if (!v || !v->geometry) continue;
       Visual vis;
       vis.name = v->name;
-      vis.shape = to_shape(v->geometry, v->origin);
+      vis.shape = urdf_shape(v->geometry, v->origin);
       vis.material.name = v->material_name;
       if (v->material) {
         vis.material.name = v->material->name;

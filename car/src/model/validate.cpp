@@ -18,6 +18,18 @@
 namespace car_sim {
 namespace detail {
 
+// A DOCTYPE that declares entities: refused, so no entity is ever expanded (billion laughs) or fetched (external).
+void refuse_entities(const tinyxml2::XMLDocument& doc, const std::string& source) {
+  for (const tinyxml2::XMLNode* n = doc.FirstChild(); n; n = n->NextSibling()) {
+    const tinyxml2::XMLUnknown* u = n->ToUnknown();
+    if (!u || !u->Value()) continue;
+    const std::string v = u->Value();
+    if (v.find("ENTITY") != std::string::npos || v.find("SYSTEM") != std::string::npos)
+      throw LoadError(source, u->GetLineNum(), "!DOCTYPE",
+                      "DTD entity declarations are refused (car expands no entities and reads no external ones)");
+  }
+}
+
 namespace {
 
 std::string num(double v) {
@@ -43,17 +55,6 @@ bool finite_number(const std::string& tok, double* out) {
   return true;
 }
 
-// A DOCTYPE that declares entities: refused, so no entity is ever expanded (billion laughs) or fetched (external).
-void refuse_entities(const tinyxml2::XMLDocument& doc, const std::string& source) {
-  for (const tinyxml2::XMLNode* n = doc.FirstChild(); n; n = n->NextSibling()) {
-    const tinyxml2::XMLUnknown* u = n->ToUnknown();
-    if (!u || !u->Value()) continue;
-    const std::string v = u->Value();
-    if (v.find("ENTITY") != std::string::npos || v.find("SYSTEM") != std::string::npos)
-      throw LoadError(source, u->GetLineNum(), "!DOCTYPE",
-                      "DTD entity declarations are refused (car expands no entities and reads no external ones)");
-  }
-}
 
 // The URDF pass: element paths and line numbers as the loader writes them.
 class UrdfCheck {
@@ -310,21 +311,6 @@ void parse_sdf(const std::string& xml, const std::string& source, tinyxml2::XMLD
                     doc->RootElement() ? doc->RootElement()->Name() : "", "root element is not <sdf>");
 }
 
-// The SDF file a model folder's model.config names: the highest <sdf version> up to 1.9.
-std::string model_sdf_file(const std::string& folder) {
-  tinyxml2::XMLDocument cfg;
-  if (cfg.LoadFile((folder + "/model.config").c_str()) != tinyxml2::XML_SUCCESS || !cfg.RootElement())
-    return "";
-  std::string best;
-  double best_v = -1;
-  for (auto* s = cfg.RootElement()->FirstChildElement("sdf"); s; s = s->NextSiblingElement("sdf")) {
-    double v = 0;
-    if (!finite_number(s->Attribute("version") ? s->Attribute("version") : "0", &v)) v = 0;
-    if (v <= 1.9 && v > best_v && !text_of(s).empty()) best = text_of(s), best_v = v;
-  }
-  return best.empty() ? "" : folder + "/" + best;
-}
-
 void read_file(const std::string& path, std::string* out) {
   std::ifstream in(path, std::ios::binary);
   std::stringstream ss;
@@ -351,7 +337,12 @@ void check_includes(const tinyxml2::XMLElement* root, const std::string& source,
                       "cannot find '" + uri + "' (model path: " + path + ")");
     }
     std::error_code ec;
-    std::string file = std::filesystem::is_directory(found, ec) ? model_sdf_file(found) : found;
+    std::string file = found;
+    if (std::filesystem::is_directory(found, ec)) try {
+        file = model_sdf_file(found);
+      } catch (const LoadError&) {
+        file.clear();
+      }
     if (file.empty()) throw LoadError(source, e->GetLineNum(), sdf_path(e) + "/uri", "'" + found + "' has no model.config naming an SDF file");
     const std::string canon = std::filesystem::weakly_canonical(file, ec).string();
     for (const auto& f : *chain)
@@ -529,6 +520,25 @@ std::vector<Diagnostic> validate_urdf(const tinyxml2::XMLDocument& doc, const st
     if (tag == "joint") check.joint(e);
   }
   return check.warnings;
+}
+
+std::string model_sdf_file(const std::string& folder) {
+  const std::string config = folder + "/model.config";
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(config, ec))
+    throw LoadError(folder, 0, "model.config", "a model folder needs a model.config");
+  tinyxml2::XMLDocument cfg;
+  if (cfg.LoadFile(config.c_str()) != tinyxml2::XML_SUCCESS || !cfg.RootElement())
+    throw LoadError(config, cfg.ErrorLineNum(), "", std::string("malformed XML: ") + cfg.ErrorStr());
+  std::string best;
+  double best_v = -1;
+  for (auto* s = cfg.RootElement()->FirstChildElement("sdf"); s; s = s->NextSiblingElement("sdf")) {
+    double v = 0;
+    if (!finite_number(s->Attribute("version") ? s->Attribute("version") : "0", &v)) v = 0;
+    if (v <= 1.9 && v > best_v && !text_of(s).empty()) best = text_of(s), best_v = v;
+  }
+  if (best.empty()) throw LoadError(config, 0, "model/sdf", "names no SDF file");
+  return folder + "/" + best;
 }
 
 void prevalidate_sdf(const std::string& xml, const std::string& source, const std::string& base_dir) {

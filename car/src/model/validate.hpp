@@ -55,6 +55,15 @@ void drop_degenerate_collisions(RobotModel* m);
 // where relative URIs resolve ("" for text). Throws LoadError naming file, line, element and reason.
 void prevalidate_sdf(const std::string& xml, const std::string& source, const std::string& base_dir);
 
+// A DOCTYPE that declares entities is refused (LoadError at "!DOCTYPE"), so no entity is ever expanded (billion
+// laughs) or fetched (external).
+void refuse_entities(const tinyxml2::XMLDocument& doc, const std::string& source);
+
+// The SDF file a model folder's model.config names: the highest <sdf version> up to 1.9 (the world loader's
+// includes and the world flattener). Throws LoadError: (folder, "model.config") when the folder has none,
+// (its model.config, "model/sdf") when it names no SDF file.
+std::string model_sdf_file(const std::string& folder);
+
 // SDF 1.4 worlds write a material script as bare text, <script>Gazebo/Green</script>; Gazebo 11's sdformat read the
 // text as the script's name, libsdformat 12 refuses it. Returns the text with each such element rewritten as
 // <script><uri>file://media/materials/scripts/gazebo.material</uri><name>Gazebo/Green</name></script> on the same

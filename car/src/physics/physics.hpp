@@ -10,7 +10,6 @@
 
 #include "car_sim/description.hpp"
 #include "car_sim/model.hpp"
-#include "car_sim/plugin.hpp"
 #include "car_sim/raycast.hpp"
 #include "car_sim/state.hpp"
 

@@ -9,6 +9,7 @@
 #include "car_sim/plugin.hpp"
 #include "car_sim/plugins.hpp"
 #include "car_sim/world.hpp"
+#include "geometry.hpp"
 #include "materials.hpp"
 
 namespace py = pybind11;
@@ -473,6 +474,28 @@ PYBIND11_MODULE(_core, m) {
   m.def("model_path", &car_sim::model_path, "Where model:// looks, in order.");
   m.def("resolve_uri", py::overload_cast<const std::string&, const std::string&>(&car_sim::resolve_uri),
         py::arg("uri"), py::arg("base_dir") = "", "The include rule: a path for a URI, '' when not found.");
+
+  m.def("simulated_geometry", &car_sim::simulated_geometry,
+        "The SDF geometry elements car simulates; the others are ignored with a warning.");
+  // The world flattener (world_tool): LoadError with the error's parts as attributes file, element and reason.
+  m.def(
+      "flatten_world",
+      [m](const std::string& path) {
+        try {
+          return flatten_world_file(path);
+        } catch (const LoadError& e) {
+          py::object type = m.attr("LoadError");
+          py::object err = type(e.what());
+          err.attr("file") = e.file();
+          err.attr("element") = e.element();
+          err.attr("reason") = e.reason();
+          PyErr_SetObject(type.ptr(), err.ptr());
+          throw py::error_already_set();
+        }
+      },
+      py::arg("path"),
+      "A world file as one self-contained SDF text: includes expanded (the loader's include rule, at most 32 deep), "
+      "nested models hoisted as 'parent::child', <state> applied. Raises LoadError (with file, element, reason).");
 
   m.def("load_world_file", [](const std::string& path) { return world_dict(load_world_file(path)); }, py::arg("path"),
         "An SDF world as the simulator reads it (sdformat, includes resolved, <state> applied), as a dict.");

@@ -3,10 +3,6 @@
 
 namespace car_ros {
 
-std::string plugin_namespace(const car_sim::PluginConfig& c, const std::string& model_name) {
-  return car_sim::plugin_robot_namespace(c, model_name);
-}
-
 std::string tf_prefix_param(const std::string& ns) {
   ros::NodeHandle nh("/" + ns);
   std::string key, value;

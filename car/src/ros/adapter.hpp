@@ -81,10 +81,6 @@ struct AdapterKind {
 // The adapter of a kind; nullptr when the kind has none (its outputs are not published).
 const AdapterKind* find_adapter(const std::string& kind);
 
-// A plug-in's namespace by its file's <robotNamespace> rule (absent, empty, explicit: docs/COMPAT-plugins.md
-// "Namespaces"): leading and trailing '/' removed ("" = global).
-std::string plugin_namespace(const car_sim::PluginConfig& c, const std::string& model_name);
-
 // The tf_prefix parameter as gazebo_plugins' drives read it (tf::getPrefixParam on a node handle in the plug-in's
 // namespace: searchParam upwards from /NS); "" when none is set (docs/COMPAT-spawn.md rule 4).
 std::string tf_prefix_param(const std::string& ns);

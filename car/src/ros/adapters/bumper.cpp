@@ -36,7 +36,7 @@ class BumperAdapter : public Adapter {
   std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
     frame_ = frame(p.config.text("frameName"));
     pub_ = node.nh().advertise<ContactsStateMsg>(
-        topic_in(plugin_namespace(p.config, robot.name), p.config.text("bumperTopicName")), 1);
+        topic_in(car_sim::plugin_robot_namespace(p.config, robot.name), p.config.text("bumperTopicName")), 1);
     return pub_.getTopic() + " (link " + p.config.link + ", frame " + frame_ + ")";
   }
 

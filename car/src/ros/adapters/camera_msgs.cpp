@@ -108,7 +108,7 @@ std::string CameraTopics::advertise(ros::NodeHandle& nh, const car_sim::PluginCo
                                     const std::string& model_name) {
   cfg_ = c;
   frame_ = frame(c.text("frameName"));
-  base_ = plugin_namespace(c, model_name);
+  base_ = car_sim::plugin_robot_namespace(c, model_name);
   const std::string cam = frame(c.text("cameraName"));
   if (!cam.empty()) base_ = base_.empty() ? cam : base_ + "/" + cam;
   image_ = nh.advertise<sensor_msgs::Image>(topic_in(base_, c.text("imageTopicName")), 2);

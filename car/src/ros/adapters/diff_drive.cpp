@@ -24,7 +24,7 @@ class DiffDriveAdapter : public Adapter {
     model_ = &robot.model;
     drive_ = dynamic_cast<car_sim::TwistDrive*>(node.world().plugin(robot.name, p.config.name));
     // GazeboRos::resolveTF: tf_prefix from the plug-in's namespace (docs/COMPAT-spawn.md rule 4)
-    prefix_ = tf_prefix_param(plugin_namespace(p.config, robot.name));
+    prefix_ = tf_prefix_param(car_sim::plugin_robot_namespace(p.config, robot.name));
     odom_frame_ = resolve_tf(prefix_, cfg_.odometry_frame);
     base_frame_ = resolve_tf(prefix_, cfg_.robot_base_frame);
     const std::string cmd = topic_in(cfg_.robot_namespace, cfg_.command_topic);

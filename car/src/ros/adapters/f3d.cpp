@@ -15,7 +15,7 @@ class F3dAdapter : public Adapter {
   std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
     frame_ = frame(p.config.text("frameName"));
     pub_ = node.nh().advertise<geometry_msgs::WrenchStamped>(
-        topic_in(plugin_namespace(p.config, robot.name), p.config.text("topicName")), 1);
+        topic_in(car_sim::plugin_robot_namespace(p.config, robot.name), p.config.text("topicName")), 1);
     return pub_.getTopic() + " (" + p.config.text("bodyName") + ", frame " + frame_ + ")";
   }
 

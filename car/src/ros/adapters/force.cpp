@@ -17,7 +17,7 @@ class ForceAdapter : public Adapter {
   std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
     name_ = p.config.name;
     target_ = dynamic_cast<car_sim::WrenchCommand*>(node.world().plugin(robot.name, p.config.name));
-    const std::string topic = topic_in(plugin_namespace(p.config, robot.name), p.config.text("topicName"));
+    const std::string topic = topic_in(car_sim::plugin_robot_namespace(p.config, robot.name), p.config.text("topicName"));
     sub_ = node.nh().subscribe<geometry_msgs::Wrench>(topic, 1, [this](const geometry_msgs::Wrench::ConstPtr& m) {
       car_sim::Wrench w;
       w.force = Eigen::Vector3d(m->force.x, m->force.y, m->force.z);

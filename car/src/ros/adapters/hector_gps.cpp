@@ -16,7 +16,7 @@ class HectorGpsAdapter : public Adapter {
  public:
   std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
     frame_ = frame(p.config.text("frameId"));
-    const std::string ns = plugin_namespace(p.config, robot.name);
+    const std::string ns = car_sim::plugin_robot_namespace(p.config, robot.name);
     fix_ = node.nh().advertise<sensor_msgs::NavSatFix>(topic_in(ns, p.config.text("topicName")), 10);
     vel_ = node.nh().advertise<geometry_msgs::Vector3Stamped>(topic_in(ns, p.config.text("velocityTopicName")), 10);
     return fix_.getTopic() + ", " + vel_.getTopic();

@@ -40,7 +40,7 @@ class HectorImuAdapter : public Adapter {
   std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
     const car_sim::PluginConfig& c = p.config;
     frame_ = frame(c.text("frameId"));
-    const std::string ns = plugin_namespace(c, robot.name);
+    const std::string ns = car_sim::plugin_robot_namespace(c, robot.name);
     // [per axis] the models' noise; a non-zero gaussianNoise replaces both
     Eigen::Vector3d rate = vec3(c, "rateGaussianNoise"), accel = vec3(c, "accelGaussianNoise");
     if (c.number("gaussianNoise") != 0.0) rate = accel = Eigen::Vector3d::Constant(c.number("gaussianNoise"));

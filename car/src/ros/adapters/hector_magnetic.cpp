@@ -16,7 +16,7 @@ class HectorMagneticAdapter : public Adapter {
   std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
     frame_ = frame(p.config.text("frameId"));
     field_msgs_ = p.config.flag("useMagneticFieldMsgs");
-    const std::string topic = topic_in(plugin_namespace(p.config, robot.name), p.config.text("topicName"));
+    const std::string topic = topic_in(car_sim::plugin_robot_namespace(p.config, robot.name), p.config.text("topicName"));
     pub_ = field_msgs_ ? node.nh().advertise<sensor_msgs::MagneticField>(topic, 1)
                        : node.nh().advertise<geometry_msgs::Vector3Stamped>(topic, 1);
     return pub_.getTopic();

@@ -14,7 +14,7 @@ class HectorSonarAdapter : public Adapter {
  public:
   std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
     frame_ = frame(p.config.text("frameId"));
-    pub_ = node.nh().advertise<sensor_msgs::Range>(topic_in(plugin_namespace(p.config, robot.name), p.config.text("topicName")), 1);
+    pub_ = node.nh().advertise<sensor_msgs::Range>(topic_in(car_sim::plugin_robot_namespace(p.config, robot.name), p.config.text("topicName")), 1);
     return pub_.getTopic();
   }
 

@@ -17,7 +17,7 @@ class ImuAdapter : public Adapter {
   std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
     frame_ = frame(p.config.text("frameName"));
     variance_ = std::pow(p.config.number("gaussianNoise"), 2);
-    imu_ = node.nh().advertise<sensor_msgs::Imu>(topic_in(plugin_namespace(p.config, robot.name), p.config.text("topicName")), 10);
+    imu_ = node.nh().advertise<sensor_msgs::Imu>(topic_in(car_sim::plugin_robot_namespace(p.config, robot.name), p.config.text("topicName")), 10);
     return imu_.getTopic();
   }
 

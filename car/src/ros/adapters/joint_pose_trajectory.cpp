@@ -21,7 +21,7 @@ class JointPoseTrajectoryAdapter : public Adapter {
     const std::string topic = p.config.text("topicName");
     if (topic.empty()) return "no topic";
     sub_ = node.nh().subscribe<trajectory_msgs::JointTrajectory>(
-        topic_in(plugin_namespace(p.config, robot.name), topic), 100,
+        topic_in(car_sim::plugin_robot_namespace(p.config, robot.name), topic), 100,
         [this](const trajectory_msgs::JointTrajectory::ConstPtr& m) { on_trajectory(*m); });
     return "trajectory " + sub_.getTopic();
   }

@@ -13,7 +13,7 @@ namespace {
 class JointStatePublisherAdapter : public Adapter {
  public:
   std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
-    const std::string ns = plugin_namespace(p.config, robot.name);
+    const std::string ns = car_sim::plugin_robot_namespace(p.config, robot.name);
     pub_ = node.nh().advertise<sensor_msgs::JointState>(topic_in(ns, "joint_states"), 1000);
     return pub_.getTopic() + " (" + p.config.text("jointName") + ") at " + p.config.text("updateRate") + " Hz";
   }

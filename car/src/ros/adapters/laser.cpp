@@ -13,7 +13,7 @@ class LaserAdapter : public Adapter {
  public:
   std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
     frame_ = frame(p.config.text("frameName"));
-    scan_ = node.nh().advertise<sensor_msgs::LaserScan>(topic_in(plugin_namespace(p.config, robot.name), p.config.text("topicName")), 10);
+    scan_ = node.nh().advertise<sensor_msgs::LaserScan>(topic_in(car_sim::plugin_robot_namespace(p.config, robot.name), p.config.text("topicName")), 10);
     return scan_.getTopic();
   }
 

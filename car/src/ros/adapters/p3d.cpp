@@ -16,7 +16,7 @@ class P3dAdapter : public Adapter {
     frame_ = frame(p.config.text("frameName"));
     body_ = p.config.text("bodyName");
     variance_ = p.config.number("gaussianNoise") * p.config.number("gaussianNoise");
-    pub_ = node.nh().advertise<nav_msgs::Odometry>(topic_in(plugin_namespace(p.config, robot.name), p.config.text("topicName")), 100);
+    pub_ = node.nh().advertise<nav_msgs::Odometry>(topic_in(car_sim::plugin_robot_namespace(p.config, robot.name), p.config.text("topicName")), 100);
     return pub_.getTopic();
   }
 

@@ -16,7 +16,7 @@ class RangeAdapter : public Adapter {
     frame_ = frame(p.config.text("frameName"));
     const double r = p.config.number("updateRate");
     period_ = r > 0 ? 1.0 / r : 0.0;
-    pub_ = node.nh().advertise<sensor_msgs::Range>(topic_in(plugin_namespace(p.config, robot.name), p.config.text("topicName")), 1);
+    pub_ = node.nh().advertise<sensor_msgs::Range>(topic_in(car_sim::plugin_robot_namespace(p.config, robot.name), p.config.text("topicName")), 1);
     return pub_.getTopic();
   }
 

@@ -88,7 +88,7 @@ class RosControlAdapter : public Adapter {
   std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
     node_ = &node;
     // <robotNamespace> absent: the model's name, empty: global, as gazebo_ros_control
-    ns_ = plugin_namespace(p.config, robot.name);
+    ns_ = car_sim::plugin_robot_namespace(p.config, robot.name);
     while (!ns_.empty() && ns_.front() == '/') ns_.erase(ns_.begin());
     rc_ = dynamic_cast<car_sim::RosControl*>(node.world().plugin(robot.name, p.config.name));
     if (!rc_) return "";

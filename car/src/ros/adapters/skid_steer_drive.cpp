@@ -19,7 +19,7 @@ class SkidSteerAdapter : public Adapter {
   std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
     robot_ = robot.name;
     drive_ = dynamic_cast<car_sim::TwistDrive*>(node.world().plugin(robot.name, p.config.name));
-    const std::string ns = plugin_namespace(p.config, robot.name);
+    const std::string ns = car_sim::plugin_robot_namespace(p.config, robot.name);
     // tf::resolve(tf::getPrefixParam) as upstream: tf_prefix from the plug-in's namespace (docs/COMPAT-spawn.md 4)
     const std::string prefix = tf_prefix_param(ns);
     odom_frame_ = resolve_tf(prefix, p.config.text("odometryFrame"));

@@ -21,7 +21,7 @@ class TricycleAdapter : public Adapter {
     drive_ = dynamic_cast<car_sim::TwistDrive*>(node.world().plugin(robot.name, p.config.name));
     model_ = &robot.model;
     name_ = p.config.name;
-    const std::string ns = plugin_namespace(p.config, robot.name);
+    const std::string ns = car_sim::plugin_robot_namespace(p.config, robot.name);
     // tf::resolve(tf::getPrefixParam) as upstream: tf_prefix from the plug-in's namespace (docs/COMPAT-spawn.md 4)
     prefix_ = tf_prefix_param(ns);
     odom_frame_ = resolve_tf(prefix_, p.config.text("odometryFrame"));

@@ -23,7 +23,7 @@ class VelodyneAdapter : public Adapter {
  public:
   std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
     // the node handle's namespace is robotNamespace (default "/"); it is also the frame prefix unless it is "/"
-    std::string ns = plugin_namespace(p.config, robot.name);
+    std::string ns = car_sim::plugin_robot_namespace(p.config, robot.name);
     frame_ = resolve_frame(ns, p.config.text("frameName"));
     pub_ = node.nh().advertise<sensor_msgs::PointCloud2>(topic_in(ns, p.config.text("topicName")), 1);
     return pub_.getTopic();

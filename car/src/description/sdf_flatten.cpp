@@ -1,0 +1,282 @@
+// One self-contained world document (world_tool flatten, check, map and plot: docs/TOOLS.md): includes expanded,
+// nested models hoisted, <state> applied. The include rule (resolve_uri, model.config, the depth limit) is the
+// loader's; python/car/world_tools.py reads the text this returns and writes it out.
+#include <tinyxml2.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "car_sim/description.hpp"
+#include "validate.hpp"
+#include "xml_util.hpp"
+
+namespace car_sim {
+
+namespace {
+
+// An attribute as Python's str(elem.get(name)) writes it ("None" when absent): the element paths of errors.
+std::string attr(const tinyxml2::XMLElement* e, const char* name) {
+  const char* v = e->Attribute(name);
+  return v ? v : "None";
+}
+
+std::string folder_of(const std::string& file) {
+  // os.path.dirname
+  const auto slash = file.rfind('/');
+  return slash == std::string::npos ? "" : slash == 0 ? "/" : file.substr(0, slash);
+}
+
+// os.path.abspath: the path against the working folder, '.', '..' and repeated '/' removed, no trailing '/'.
+std::string abspath(const std::string& p) {
+  std::error_code ec;
+  const std::string full = (!p.empty() && p[0] == '/') ? p : std::filesystem::current_path(ec).string() + "/" + p;
+  std::vector<std::string> parts;
+  size_t from = 0;
+  while (from <= full.size()) {
+    const size_t to = std::min(full.find('/', from), full.size());
+    const std::string part = full.substr(from, to - from);
+    if (part == "..") {
+      if (!parts.empty()) parts.pop_back();
+    } else if (!part.empty() && part != ".") {
+      parts.push_back(part);
+    }
+    from = to + 1;
+  }
+  std::string out;
+  for (const auto& part : parts) out += "/" + part;
+  return out.empty() ? "/" : out;
+}
+
+// Reads an SDF file into doc (no DTD entities, as the loader). tinyxml2 refuses documents nested deeper than its
+// TINYXML2_MAX_ELEMENT_DEPTH.
+void read_sdf(const std::string& file, tinyxml2::XMLDocument* doc) {
+  const tinyxml2::XMLError err = doc->LoadFile(file.c_str());
+  if (err == tinyxml2::XML_ERROR_FILE_NOT_FOUND) throw LoadError(file, 0, "", "no such file");
+  if (err == tinyxml2::XML_ELEMENT_DEPTH_EXCEEDED)
+    throw LoadError(file, doc->ErrorLineNum(), "",
+                    "elements nest too deep to read (more than " +
+                        std::to_string(TINYXML2_MAX_ELEMENT_DEPTH) + " levels)");
+  if (err != tinyxml2::XML_SUCCESS)
+    throw LoadError(file, doc->ErrorLineNum(), "", std::string("malformed XML: ") + doc->ErrorStr());
+  detail::refuse_entities(*doc, file);
+}
+
+// A pose 'x y z roll pitch yaw' as a 4x4 transform (empty: identity); throws at element when it is not 6 finite
+// numbers.
+Eigen::Matrix4d parse_pose(const std::string& text, const std::string& file, const std::string& element) {
+  const std::string t = detail::trim(text);
+  const auto toks = detail::split_ws(t);
+  if (toks.empty()) return Eigen::Matrix4d::Identity();
+  std::vector<double> v;
+  for (const auto& tok : toks) {
+    char* end = nullptr;
+    const double x = std::strtod(tok.c_str(), &end);
+    // a decimal as Python's float() reads it (no hexadecimal)
+    if (end != tok.c_str() + tok.size() || tok.find_first_of("xX") != std::string::npos) {
+      v.clear();
+      break;
+    }
+    v.push_back(x);
+  }
+  if (v.size() != 6) throw LoadError(file, 0, element, "pose '" + t + "' is not 6 numbers (x y z roll pitch yaw)");
+  for (double x : v)
+    if (!std::isfinite(x)) throw LoadError(file, 0, element, "pose '" + t + "' has a non-finite value");
+  const double cr = std::cos(v[3]), sr = std::sin(v[3]), cp = std::cos(v[4]), sp = std::sin(v[4]),
+               cy = std::cos(v[5]), sy = std::sin(v[5]);
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  T.block<3, 3>(0, 0) << cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr,  //
+      sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,                     //
+      -sp, cp * sr, cp * cr;
+  T.block<3, 1>(0, 3) << v[0], v[1], v[2];
+  return T;
+}
+
+// A number as Python's repr(float('%.12g' % v)) writes it; 0 as "0".
+std::string format_number(double v) {
+  if (v == 0.0) return "0";
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%.12g", v);
+  std::string s = buf;
+  if (!std::isfinite(v)) return s;
+  const auto e = s.find('e');
+  if (e != std::string::npos) {
+    const int exp = std::atoi(s.c_str() + e + 1);
+    if (exp < 16 && exp >= 12) {  // repr writes these in full; with 12 digits they are whole numbers
+      std::snprintf(buf, sizeof(buf), "%.0f", std::strtod(s.c_str(), nullptr));
+      return std::string(buf) + ".0";
+    }
+    return s;
+  }
+  return s.find('.') == std::string::npos ? s + ".0" : s;
+}
+
+// 'x y z roll pitch yaw' of a transform.
+std::string format_pose(const Eigen::Matrix4d& T) {
+  const double pitch = std::asin(std::max(-1.0, std::min(1.0, -T(2, 0))));
+  const double roll = std::atan2(T(2, 1), T(2, 2)), yaw = std::atan2(T(1, 0), T(0, 0));
+  const double vals[6] = {T(0, 3), T(1, 3), T(2, 3), roll, pitch, yaw};
+  std::string out;
+  for (double v : vals) out += (out.empty() ? "" : " ") + format_number(v);
+  return out;
+}
+
+// A child's text, as Python's findtext: nullopt when there is no such child, "" when it has no text.
+std::optional<std::string> find_text(const tinyxml2::XMLElement* e, const char* tag) {
+  const tinyxml2::XMLElement* c = e->FirstChildElement(tag);
+  if (!c) return std::nullopt;
+  return std::string(c->GetText() ? c->GetText() : "");
+}
+
+void set_child(tinyxml2::XMLElement* e, const char* tag, const std::string& text) {
+  tinyxml2::XMLElement* c = e->FirstChildElement(tag);
+  if (!c) c = e->InsertNewChildElement(tag);
+  c->SetText(text.c_str());
+}
+
+class Flattener {
+ public:
+  explicit Flattener(tinyxml2::XMLDocument* out) : out_(out) {}
+
+  // Replaces every <include> below parent by what it includes, with the include's overrides.
+  void expand(tinyxml2::XMLElement* parent, const std::string& base_dir, const std::string& file,
+              const std::string& where, int depth) {
+    if (depth > limits::kIncludeDepthMax)
+      throw LoadError(file, parent->GetLineNum(), where,
+                      "includes nest deeper than " + std::to_string(limits::kIncludeDepthMax) + " levels (a cycle?)");
+    int i = 0;
+    for (tinyxml2::XMLElement* child = parent->FirstChildElement(); child; ++i) {
+      tinyxml2::XMLElement* next = child->NextSiblingElement();
+      const std::string tag = child->Name();
+      if (tag == "include") {
+        const std::string here = where + "/include[" + std::to_string(i) + "]";
+        std::string body_dir, body_file;
+        tinyxml2::XMLElement* body = load_included(child, base_dir, file, here, &body_dir, &body_file);
+        if (const auto name = find_text(child, "name"); name && !name->empty())
+          body->SetAttribute("name", detail::trim(*name).c_str());
+        if (const auto pose = find_text(child, "pose")) {
+          parse_pose(*pose, file, here + "/pose");
+          set_child(body, "pose", detail::trim(*pose));
+        }
+        if (const auto is_static = find_text(child, "static"); is_static && std::string(body->Name()) == "model")
+          set_child(body, "static", detail::trim(*is_static));
+        absolute_mesh_uris(body, body_dir);
+        expand(body, body_dir, body_file, std::string(body->Name()) + "[" + attr(body, "name") + "]", depth + 1);
+        parent->InsertAfterChild(child, body);
+        parent->DeleteChild(child);
+      } else if (tag == "model") {
+        expand(child, base_dir, file, where + "/model[" + attr(child, "name") + "]", depth);
+      }
+      child = next;
+    }
+  }
+
+ private:
+  // The <model>, <light> or <actor> an <include> names, copied into the output document (not yet linked).
+  tinyxml2::XMLElement* load_included(const tinyxml2::XMLElement* include, const std::string& base_dir,
+                                      const std::string& file, const std::string& where, std::string* body_dir,
+                                      std::string* body_file) {
+    const std::string uri = detail::text_of(include->FirstChildElement("uri"));
+    if (uri.empty()) throw LoadError(file, include->GetLineNum(), where, "<include> has no <uri>");
+    const std::string target = resolve_uri(uri, base_dir);
+    if (target.empty()) {
+      std::string path;
+      for (const auto& d : model_path()) path += (path.empty() ? "" : ":") + d;
+      throw LoadError(file, include->GetLineNum(), where + "/uri",
+                      "cannot find '" + uri + "' (model path: " + path + ")");
+    }
+    std::error_code ec;
+    const std::string sdf_file = std::filesystem::is_directory(target, ec) ? detail::model_sdf_file(target) : target;
+    tinyxml2::XMLDocument doc;
+    read_sdf(sdf_file, &doc);
+    const tinyxml2::XMLElement* body = nullptr;
+    if (const tinyxml2::XMLElement* root = doc.RootElement())
+      for (const tinyxml2::XMLElement* c = root->FirstChildElement(); c && !body; c = c->NextSiblingElement()) {
+        const std::string tag = c->Name();
+        if (tag == "model" || tag == "light" || tag == "actor") body = c;
+      }
+    if (!body) throw LoadError(sdf_file, 0, "sdf", "holds no <model> or <light>");
+    *body_dir = folder_of(sdf_file);
+    *body_file = sdf_file;
+    return body->DeepClone(out_)->ToElement();
+  }
+
+  // Mesh URIs inside an included model, made absolute so the output stands alone (package:// ones stay).
+  static void absolute_mesh_uris(tinyxml2::XMLElement* e, const std::string& base_dir) {
+    if (std::string(e->Name()) == "mesh")
+      if (tinyxml2::XMLElement* u = e->FirstChildElement("uri"); u && u->GetText()) {
+        const std::string text = u->GetText();
+        if (detail::trim(text).rfind("package://", 0) != 0) {
+          const std::string p = resolve_uri(text, base_dir);
+          if (!p.empty()) u->SetText(("file://" + abspath(p)).c_str());
+        }
+      }
+    for (tinyxml2::XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement())
+      absolute_mesh_uris(c, base_dir);
+  }
+
+  tinyxml2::XMLDocument* out_;
+};
+
+// Nested models become top-level models 'parent::child' with composed poses, static when the parent is (the
+// loader's add_model does the same on the DOM). Each pass hoists one level; a parent's nested models land right
+// after it, the last one first.
+void hoist_nested(tinyxml2::XMLElement* world, const std::string& file) {
+  for (bool changed = true; changed;) {
+    changed = false;
+    std::vector<tinyxml2::XMLElement*> models;
+    for (auto* m = world->FirstChildElement("model"); m; m = m->NextSiblingElement("model")) models.push_back(m);
+    for (tinyxml2::XMLElement* m : models) {
+      std::vector<tinyxml2::XMLElement*> nested;
+      for (auto* n = m->FirstChildElement("model"); n; n = n->NextSiblingElement("model")) nested.push_back(n);
+      for (tinyxml2::XMLElement* n : nested) {
+        const Eigen::Matrix4d Tm = parse_pose(find_text(m, "pose").value_or(""), file, "");
+        const Eigen::Matrix4d Tn = parse_pose(find_text(n, "pose").value_or(""), file, "");
+        n->SetAttribute("name", (attr(m, "name") + "::" + attr(n, "name")).c_str());
+        set_child(n, "pose", format_pose(Tm * Tn));
+        const std::string parent_static = detail::trim(find_text(m, "static").value_or(""));
+        if (parent_static == "1" || parent_static == "true") set_child(n, "static", "true");
+        world->InsertAfterChild(m, n);  // moves n out of m
+        changed = true;
+      }
+    }
+  }
+}
+
+// Gazebo applies a world's <state> when it loads: model poses there win; the block is then dropped.
+void apply_state(tinyxml2::XMLElement* world) {
+  std::vector<tinyxml2::XMLElement*> states;
+  for (auto* st = world->FirstChildElement("state"); st; st = st->NextSiblingElement("state")) states.push_back(st);
+  for (tinyxml2::XMLElement* st : states) {
+    for (auto* sm = st->FirstChildElement("model"); sm; sm = sm->NextSiblingElement("model")) {
+      const auto pose = find_text(sm, "pose");
+      for (auto* m = world->FirstChildElement("model"); m; m = m->NextSiblingElement("model"))
+        if (pose && attr(m, "name") == attr(sm, "name")) set_child(m, "pose", detail::trim(*pose));
+    }
+    world->DeleteChild(st);
+  }
+}
+
+}  // namespace
+
+std::string flatten_world_file(const std::string& path) {
+  tinyxml2::XMLDocument doc;
+  read_sdf(path, &doc);
+  tinyxml2::XMLElement* root = doc.RootElement();
+  if (!root || std::string(root->Name()) != "sdf")
+    throw LoadError(path, root ? root->GetLineNum() : 0, root ? root->Name() : "", "root element is not <sdf>");
+  tinyxml2::XMLElement* world = root->FirstChildElement("world");
+  if (!world) throw LoadError(path, root->GetLineNum(), "sdf", "no <world>");
+  Flattener(&doc).expand(world, folder_of(abspath(path)), path, "world[" + attr(world, "name") + "]", 0);
+  hoist_nested(world, path);
+  apply_state(world);
+  tinyxml2::XMLPrinter printer(nullptr, /*compact=*/true);
+  doc.Print(&printer);
+  return printer.CStr();
+}
+
+}  // namespace car_sim
