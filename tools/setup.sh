@@ -115,6 +115,8 @@ cd .ws
 # ccache, where a developer installed it, shares objects between work trees; it is not needed.
 launcher=()
 if command -v ccache >/dev/null 2>&1; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+# paths relative to the clone, so that two clones share objects
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$ROOT}"
 if [ ! -f build/Makefile ]; then
   catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON \
     -DCAR_VENV="$VENV" "${launcher[@]}" -j2 > build.log 2>&1 || { tail -n 60 build.log; exit 1; }
