@@ -11,7 +11,7 @@ import xml.etree.ElementTree as ET
 # package's run-time half is its Python module (its C++ headers are build-time only). '' = nothing at run time.
 RUN = {
     'rospy': 'python3-rospy', 'roslaunch': 'python3-roslaunch',
-    'roscpp': '', 'rosparam': 'python3-rosparam', 'rosbag': 'python3-rosbag', 'message_runtime': 'ros-message-runtime',
+    'roscpp': '', 'rosparam': 'python3-rosparam', 'rosbag': 'python3-rosbag', 'message_runtime': 'python3-genpy',
     'message_generation': '', 'std_msgs': 'python3-std-msgs', 'std_srvs': 'python3-std-srvs',
     'geometry_msgs': 'python3-geometry-msgs', 'nav_msgs': 'python3-nav-msgs',
     'trajectory_msgs': 'python3-trajectory-msgs', 'sensor_msgs': 'python3-sensor-msgs',
@@ -20,7 +20,7 @@ RUN = {
     'actionlib_msgs': 'python3-actionlib-msgs', 'visualization_msgs': 'python3-visualization-msgs',
     'python3-rospkg': 'python3-rospkg', 'robot_state_publisher': 'ros-robot-state-publisher',
     'joint_state_publisher': 'joint-state-publisher', 'python3-yaml': 'python3-yaml',
-    'python3-numpy': 'python3-numpy', 'python3-matplotlib': 'python3-matplotlib', 'python3-tqdm': 'python3-tqdm',
+    'python3-numpy': 'python3-numpy', 'python3-tqdm': 'python3-tqdm',
     # libraries: dpkg-shlibdeps names the run-time package of each
     'liburdfdom-dev': '', 'libconsole-bridge-dev': '', 'tinyxml2': '', 'libsdformat-dev': '',
     'libbullet-dev': '', 'libembree-dev': '', 'libassimp-dev': '', 'topic_tools': '',
@@ -29,8 +29,10 @@ RUN = {
     'control_msgs': 'ros-car-control-msgs', 'gazebo_ros': 'ros-car-gazebo-ros', 'gazebo': 'ros-car-gazebo',
     'xacro': 'ros-car-xacro', 'controller_manager': 'ros-car-controller-manager',
 }
-# What a user expects beside the simulator, not needed to run it: rviz (a display), rostopic and rosbash (by hand).
-RECOMMENDS = {'rviz': 'rviz'}
+# What a user expects beside the simulator, not needed to run it: rviz (a display); matplotlib draws the plots of
+# world_tool plot and of a failed car.testing test (it pulls a compiler in through pythran: a Recommends keeps it
+# out of `apt-get install --no-install-recommends`).
+RECOMMENDS = {'rviz': 'rviz', 'python3-matplotlib': 'python3-matplotlib'}
 # Every package runs through catkin's setup files in /opt/car, and the command-line tools users run with it.
 ALWAYS = ['ros-car-setup']
 TOOLS = {'ros-car': ['rosbash', 'python3-rostopic', 'python3-rosnode', 'python3-rosservice', 'python3-rosmaster']}
@@ -57,7 +59,7 @@ def main(argv=None):
         desc = ('catkin workspace files of car\'s install in /opt/car\n'
                 ' setup.bash and friends: `source /opt/car/setup.bash` puts car and its drop-in packages on the ROS\n'
                 ' package path.')
-        depends = ['python3-catkin-pkg', 'catkin']
+        depends = ['python3']
         arch = 'all'
     else:
         tree = ET.parse(package_xml(a.root, a.deb)).getroot()
