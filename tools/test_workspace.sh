@@ -114,8 +114,19 @@ if [ -z "$INNER" ]; then
 t0=$SECONDS
 mkdir -p "$WS/src/car"
 (cd "$ROOT" && git ls-files -z --cached --others --exclude-standard | xargs -0 -r cp --parents -a -t "$WS/src/car" 2>/dev/null)
-# the venv tools/setup.sh --deps-only would make in the clone: this repository's, linked
-ln -s "$ROOT/.venv" "$WS/src/car/.venv"
+# the documented step, tools/setup.sh --deps-only: Debian's packages (here all present) and the clone's venv. So
+# that nothing is downloaded again, the venv is made beforehand with this repository's site-packages (linked) and
+# requirements stamp; setup.sh then only writes the clone's own bin/car and bin/xacro into it.
+/usr/bin/python3 -m venv --system-site-packages --without-pip "$WS/src/car/.venv"
+for sp in "$WS/src/car/.venv"/lib/python3*/site-packages; do
+  rm -rf "$sp" && ln -s "$(echo "$ROOT/.venv"/lib/python3*/site-packages)" "$sp"
+done
+cp "$ROOT/.venv/.requirements.sha" "$WS/src/car/.venv/"
+t0=$SECONDS
+bash "$WS/src/car/tools/setup.sh" --deps-only > "$LOGS/deps_only.log" 2>&1
+rc=$?
+[ ! -e "$WS/src/car/.ws" ] || rc=1
+record "setup_deps_only_builds_nothing" $rc $t0 "tools/setup.sh --deps-only (exit $rc, or it made .ws): $(tail -n 5 "$LOGS/deps_only.log")"
 found="$(cd "$WS/src" && /usr/bin/python3 -c 'from catkin_pkg.packages import find_packages; print(" ".join(sorted(p.name for p in find_packages(".").values())))')"
 want="car control_msgs controller_manager controller_manager_msgs gazebo gazebo_msgs gazebo_ros xacro"
 [ "$found" = "$want" ]; record "clone_finds_every_package" $? $t0 "catkin_pkg found [$found] in the clone, expected [$want]"
