@@ -26,11 +26,14 @@ class TeleopTest(unittest.TestCase):
         self.saved = termios.tcgetattr(self.slave)
         self.proc = subprocess.Popen([find_node('car', 'teleop_twist_keyboard.py')[0], '_key_timeout:=0'],
                                      stdin=self.slave, stdout=self.slave, stderr=subprocess.PIPE)
-        # wait until it has put the terminal in raw mode and connected to us
-        deadline = time.time() + 30
+        # wait until it has put the terminal in raw mode and connected to us (a hang guard, not a speed limit: a
+        # python node can take tens of seconds to start on a loaded machine)
+        deadline = time.time() + 180
         while time.time() < deadline and (termios.tcgetattr(self.slave) == self.saved or
                                           not self.msgs_pub_connected()):
             time.sleep(0.05)
+        self.assertTrue(termios.tcgetattr(self.slave) != self.saved and self.msgs_pub_connected(),
+                        'teleop_twist_keyboard did not put the terminal in raw mode and advertise /cmd_vel in 180 s')
 
     def teleop_sends_to_us(self):
         master = rosgraph.Master(rospy.get_name())
@@ -46,14 +49,14 @@ class TeleopTest(unittest.TestCase):
     def send(self, keys, expect):
         n = len(self.msgs)
         os.write(self.master, keys.encode())
-        deadline = time.time() + 10
+        deadline = time.time() + 60
         while len(self.msgs) < n + expect and time.time() < deadline:
             time.sleep(0.02)
         return self.msgs[n:]
 
     def stop(self):
         os.write(self.master, b'\x03')
-        self.proc.wait(timeout=20)
+        self.proc.wait(timeout=120)
 
     def tearDown(self):
         if self.proc.poll() is None:
@@ -84,7 +87,7 @@ class TeleopTest(unittest.TestCase):
         self.start()
         self.assertNotEqual(termios.tcgetattr(self.slave), self.saved)  # raw while running
         self.proc.terminate()
-        self.proc.wait(timeout=20)
+        self.proc.wait(timeout=120)
         self.assertEqual(termios.tcgetattr(self.slave), self.saved)
 
 
