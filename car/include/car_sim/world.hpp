@@ -196,4 +196,11 @@ class World {
   std::unique_ptr<Impl> impl_;
 };
 
+// Advances every world n steps, the worlds on car's thread pool (include/car_sim/parallel.hpp), one world per item;
+// inside each, the world's own parallel loops run serially on its thread (the pool's nested-loop rule). The worlds
+// must be distinct (std::invalid_argument otherwise, before any is stepped). Every world is stepped even when one
+// throws; then the exception of the first failing world in list order is rethrown. The result is the same bit for
+// bit as stepping each world alone, in any order, on any number of threads.
+void step_worlds(const std::vector<World*>& worlds, uint64_t n = 1);
+
 }  // namespace car_sim

@@ -702,7 +702,9 @@ PYBIND11_MODULE(_core, m) {
       [](const std::vector<World*>& worlds, int n) {
         // one call for a whole vector of worlds (car.gym's vector env): no Python between them, the GIL released
         py::gil_scoped_release release;
-        for (World* w : worlds) w->step(n);
+        step_worlds(worlds, static_cast<uint64_t>(n));
       },
-      py::arg("worlds"), py::arg("n") = 1, "Advance each world n steps, one after the other, without the GIL.");
+      py::arg("worlds"), py::arg("n") = 1,
+      "Advance each world n steps, the worlds on car's thread pool, without the GIL (docs/BATCH.md). ValueError "
+      "when a world appears twice.");
 }

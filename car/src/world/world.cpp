@@ -5,11 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <map>
 #include <stdexcept>
 
 #include "bodies.hpp"
 #include "car_sim/mesh.hpp"
+#include "car_sim/parallel.hpp"
 #include "guard.hpp"
 #include "physics.hpp"
 #include "services.hpp"
@@ -735,6 +737,30 @@ void World::set_solver_iterations(int n) {
   if (n < 1) throw std::invalid_argument("solver iterations must be at least 1");
   impl_->solver_iterations = n;
   physics::set_solver_iterations(*impl_->phys, n);
+}
+
+void step_worlds(const std::vector<World*>& worlds, uint64_t n) {
+  const int count = static_cast<int>(worlds.size());
+  // one world on two threads at once would race on its state
+  std::map<const World*, int> first;
+  for (int i = 0; i < count; ++i) {
+    if (!worlds[i]) throw std::invalid_argument("step_worlds: worlds[" + std::to_string(i) + "] is null");
+    auto [it, fresh] = first.emplace(worlds[i], i);
+    if (!fresh)
+      throw std::invalid_argument("step_worlds: worlds[" + std::to_string(i) + "] is worlds[" +
+                                  std::to_string(it->second) + "]; a world may appear once");
+  }
+  // each item's error kept in its slot: which one is raised does not depend on which thread failed first
+  std::vector<std::exception_ptr> errors(worlds.size());
+  parallel_for(count, [&](int i) {
+    try {
+      worlds[i]->step(n);
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+  });
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
 }
 
 }  // namespace car_sim

@@ -7,6 +7,7 @@
 #include <omp.h>
 
 #include "car_sim/world.hpp"
+#include "laser/laser.hpp"
 #include "test_util.hpp"
 
 using namespace car_sim;
@@ -303,4 +304,82 @@ TEST(WorldErrors, DynamicLinkWithoutMass) {
 TEST(WorldErrors, MalformedSdfNamesTheFile) {
   const std::string msg = load_error("bad/malformed.world");
   EXPECT_EQ(msg.rfind(data_path("bad/malformed.world"), 0), 0u) << msg;
+}
+
+namespace {
+
+// Five seed cars in five box_house worlds (noise seeds 0..4), lidar on, driving different arcs; car 3 heads into
+// Wall_2 (inner face x = 4.374) at 1.5 m/s: ramping at 1.8 m/s^2 it loses 0.625 m, so the base (radius 0.1 m)
+// touches at x = 4.274 after 2.774 m, t = 2.26 s. Everything a step writes: base pose and twist, joint states, every scan.
+std::vector<std::unique_ptr<World>> five_worlds() {
+  std::vector<std::unique_ptr<World>> ws;
+  for (int i = 0; i < 5; ++i) {
+    WorldOptions o;
+    o.seed = static_cast<uint64_t>(i);
+    ws.push_back(std::make_unique<World>(load_world_file(std::string(CAR_SOURCE_DIR) + "/worlds/box_house.world"), o));
+    ws.back()->spawn(car(), "mycar", at(0.5 * i, 0.0, 0.0));
+    ws.back()->set_sensor_active("mycar", "gazebo_rplidar", true);
+    ws.back()->set_cmd_vel("mycar", i == 3 ? 1.5 : 0.2 + 0.1 * i, i == 3 ? 0.0 : 1.0 - 0.4 * i);
+  }
+  return ws;
+}
+
+std::vector<double> trace(World& w) {
+  std::vector<double> out;
+  const ModelState s = w.model_state("mycar");
+  for (int k = 0; k < 3; ++k) out.push_back(s.pose.translation()[k]);
+  const Eigen::Quaterniond q(s.pose.rotation());
+  for (double c : {q.x(), q.y(), q.z(), q.w()}) out.push_back(c);
+  for (int k = 0; k < 3; ++k) out.push_back(s.linear[k]);
+  for (int k = 0; k < 3; ++k) out.push_back(s.angular[k]);
+  for (const JointState& j : w.joint_states("mycar")) {
+    out.push_back(j.position);
+    out.push_back(j.velocity);
+  }
+  for (const LaserScanOut& scan : w.take_outputs<LaserScanOut>())
+    for (float r : scan.ranges) out.push_back(r);
+  return out;
+}
+
+}  // namespace
+
+// step_worlds runs the worlds on the pool, one world per item, their own loops nested (serial) on its thread: the
+// same bits as each world stepped alone by World::step, on one, two and three threads, in 2500 steps of 10 calls.
+TEST(WorldBatch, StepWorldsOnAnyThreadCountMatchesWorldsSteppedAlone) {
+  std::vector<std::vector<double>> alone;
+  for (auto& w : five_worlds()) {
+    for (int c = 0; c < 10; ++c) w->step(250);
+    alone.push_back(trace(*w));
+  }
+  // the wall stopped car 3 (unhindered it would be at x = 1.5 + 3.125 = 4.625 m by t = 2.5 s)
+  EXPECT_NEAR(alone[3][0], 4.274, 0.01);
+  const int before = omp_get_max_threads();
+  for (int threads : {1, 2, 3}) {
+    auto ws = five_worlds();
+    std::vector<World*> ptrs;
+    for (auto& w : ws) ptrs.push_back(w.get());
+    omp_set_num_threads(threads);
+    for (int c = 0; c < 10; ++c) step_worlds(ptrs, 250);
+    omp_set_num_threads(before);
+    for (size_t i = 0; i < ws.size(); ++i) {
+      const std::vector<double> got = trace(*ws[i]);
+      ASSERT_EQ(got.size(), alone[i].size()) << "world " << i << ", " << threads << " threads";
+      EXPECT_EQ(0, std::memcmp(got.data(), alone[i].data(), got.size() * sizeof(double)))
+          << "world " << i << ", " << threads << " threads";
+    }
+  }
+}
+
+// A world twice in the list would be stepped on two threads at once: refused before any world moves.
+TEST(WorldBatch, AWorldTwiceIsRefused) {
+  auto a = box_house_with_car();
+  auto b = box_house_with_car();
+  try {
+    step_worlds({a.get(), b.get(), a.get()}, 10);
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "step_worlds: worlds[2] is worlds[0]; a world may appear once");
+  }
+  EXPECT_EQ(a->tick(), 0u);
+  EXPECT_EQ(b->tick(), 0u);
 }
