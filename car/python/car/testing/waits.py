@@ -175,20 +175,20 @@ class Pacer:
             self.set(self.rtf0)
 
 
-def _run_paced(clock, t0, deadline, predicate, what, seed, hang_s, lead_wall_s, poll_s=0.002):
+def _run_paced(clock, t0, deadline, predicate, what, seed, hang_s, lead_wall_s, poll_s=0.002, paced=True):
     """Unpauses, polls predicate() until it is truthy (returns its value) or sim time reaches deadline (returns
     None), and pauses. The simulator pauses itself at the deadline (~pause_at), so a wait that runs out stops at
     exactly its last step. A predicate that comes true is seen some wall milliseconds later, and a simulator at
     rtf 0 can run hundreds of sim seconds per wall second, so the run is paced as it nears the deadline: the
     real-time factor is set so that what is left takes about lead_wall_s of wall time (never above the run's own
-    factor), and the predicate is looked at often enough. The physics does not depend on pacing: the same steps
-    happen either way."""
+    factor), and the predicate is looked at often enough (paced=False: no pacing, for a predicate that never comes
+    true). The physics does not depend on pacing: the same steps happen either way."""
     import rospy
     pacer = Pacer()
     fast = pacer.rtf0 if pacer.rtf0 > 0 else float('inf')
     last_t, last_move = t0, time.monotonic()
     # paced from the first step: a factor set after unpausing would come while the simulator runs freely
-    if (deadline - t0) / lead_wall_s < fast:
+    if paced and (deadline - t0) / lead_wall_s < fast:
         pacer.set(max((deadline - t0) / lead_wall_s, 0.05))
     # the deadline itself is exact: the simulator pauses itself there (~pause_at), whatever the load
     rospy.set_param('/gazebo/pause_at', deadline)
@@ -201,11 +201,12 @@ def _run_paced(clock, t0, deadline, predicate, what, seed, hang_s, lead_wall_s, 
             now = sim_now()
             clock.advance_to(now)
             left = deadline - now
-            if left <= 0:
+            # the simulator's pause step is the first at or after the deadline, to a nanosecond of rounding
+            if left <= 1e-9:
                 return None
             want = min(fast, max(left / lead_wall_s, 0.05))
             # change the factor only when it is far off (each change costs a service call)
-            if want < pacer.rtf * 0.5 or (pacer.rtf == 0 and want != float('inf')):
+            if paced and (want < pacer.rtf * 0.5 or (pacer.rtf == 0 and want != float('inf'))):
                 pacer.set(want)
             if now != last_t:
                 last_t, last_move = now, time.monotonic()
@@ -222,27 +223,10 @@ def run_for(clock, seconds, seed=None, hang_s=60.0, lead_wall_s=0.1):
     """Runs the simulation (unpaused, then paused) until its time has moved on by `seconds` from now; returns the
     sim time [s] it paused at: the first step at or after the target, whatever the machine's load. The simulator
     pauses itself there (its ~pause_at parameter, read when unpausing; docs/COMPAT-dropins.md "Pause at")."""
-    import rospy
     t0 = sim_now()
     clock.advance_to(t0)
-    target = t0 + seconds
-    what = 'run_for(%g)' % seconds
-    rospy.set_param('/gazebo/pause_at', target)
-    unpause()
-    last_t, last_move = t0, time.monotonic()
-    try:
-        while True:
-            now = sim_now()
-            if now >= target - 1e-9:
-                break
-            if now != last_t:
-                last_t, last_move = now, time.monotonic()
-            elif time.monotonic() - last_move > hang_s:
-                raise AssertionError('%s: sim time stood still at %.3f s for %.0f s of wall time (did the simulator '
-                                     'die or get paused?)%s' % (what, now, hang_s, _seed_text(seed)))
-            time.sleep(0.002)
-    finally:
-        pause()
+    _run_paced(clock, t0, t0 + seconds, lambda: False, 'run_for(%g)' % seconds, seed, hang_s, lead_wall_s,
+               paced=False)
     t = sim_now()
     clock.advance_to(t)
     return t
