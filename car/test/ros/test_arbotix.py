@@ -14,10 +14,9 @@ import rostest
 import tf2_ros
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
-from roslib.packages import find_node
 from sensor_msgs.msg import JointState
 
-from simtest import fit_circle
+from simtest import car_program, fit_circle
 
 
 class ArbotixTest(unittest.TestCase):
@@ -76,7 +75,7 @@ class ArbotixTest(unittest.TestCase):
     def test_3_bad_config_exits_nonzero_naming_the_key(self):
         rospy.set_param('/bad_driver/controllers', {'base_controller': {'type': 'diff_controller', 'ticks_meter': 2000}})
         rospy.set_param('/bad_driver/sim', True)
-        r = subprocess.run([find_node('car', 'arbotix_driver')[0], '__name:=bad_driver'], capture_output=True,
+        r = subprocess.run([car_program('arbotix_driver'), '__name:=bad_driver'], capture_output=True,
                            text=True, timeout=60)
         self.assertNotEqual(r.returncode, 0)
         self.assertIn('~controllers/base_controller/base_width is required', r.stderr + r.stdout)

@@ -6,13 +6,13 @@ import unittest
 
 import rospkg
 import rostest
-from roslib.packages import find_node
+import simtest
 
 DATA = os.path.join(rospkg.RosPack().get_path('car'), 'test', 'data')
 
 
 def run_sim(world):
-    node = find_node('car', 'sim_node')[0]
+    node = simtest.car_program('sim_node')
     return subprocess.run([node, '__name:=bad_world_sim', '_world_name:=' + world], capture_output=True, text=True,
                           timeout=60)
 

@@ -11,7 +11,7 @@ import rosgraph
 import rospy
 import rostest
 from geometry_msgs.msg import Twist
-from roslib.packages import find_node
+import simtest
 
 
 class TeleopTest(unittest.TestCase):
@@ -24,7 +24,7 @@ class TeleopTest(unittest.TestCase):
     def start(self):
         self.master, self.slave = os.openpty()
         self.saved = termios.tcgetattr(self.slave)
-        self.proc = subprocess.Popen([find_node('car', 'teleop_twist_keyboard.py')[0], '_key_timeout:=0'],
+        self.proc = subprocess.Popen([simtest.car_program('teleop_twist_keyboard.py'), '_key_timeout:=0'],
                                      stdin=self.slave, stdout=self.slave, stderr=subprocess.PIPE)
         # wait until it has put the terminal in raw mode and connected to us (a hang guard, not a speed limit: a
         # python node can take tens of seconds to start on a loaded machine)
