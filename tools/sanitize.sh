@@ -8,6 +8,10 @@
 #          parallel_for, built without car_sim) and test_core's threaded gtests (the island solver on 1-3 threads,
 #          the cameras' banded rendering), which needs car_sim built with TSan
 #   tsan-quick  test_threads only
+#   tsan-ros    sim_node built with TSan under two rostests (after tsan): node_rates (the publishing thread, the
+#          pacer, /clock) and sensors (the tutorial car in box_house: the island pool, the lidar's and the Kinect's
+#          banded rendering through parallel_for, the publishing thread under load). roscpp and Boost are not
+#          instrumented; TSan still sees their pthread locks, and tools/sanitizers/tsan.supp names what remains.
 # Usage: tools/sanitize.sh [asan|asan-gtest|asan-pytest] [tsan|tsan-quick]   (asan and tsan when none given).
 # JOBS=N for the builds (default 2).
 # Each process writes its reports to $OUT/<stage>/ (log_path): any file there fails the stage. Suppressions, for
@@ -113,6 +117,20 @@ tsan_run() {  # tsan_run NAME BINARY [ARGS...]
   return $rc
 }
 
+# rostest RUNs sim_node from .ws-tsan's devel space (rosrun finds the workspace sourced first); every process it
+# starts inherits TSAN_OPTIONS, and only the instrumented sim_node writes reports.
+tsan_ros() {
+  local d="$OUT/tsan-ros" t rc=0; rm -rf "$d"; mkdir -p "$d"
+  for t in node_rates sensors; do
+    ( set +u; source "$ROOT/.ws-tsan/devel/setup.bash"; set -u
+      OMP_NUM_THREADS=2 TSAN_OPTIONS="log_path=$d/tsan:halt_on_error=0:second_deadlock_stack=1:report_signal_unsafe=0:suppressions=$SUPP/tsan.supp" \
+        rostest car "$t.test" > "$d-$t.log" 2>&1 ) || rc=1
+    tail -n 4 "$d-$t.log"
+  done
+  reports "$d" || rc=1
+  return $rc
+}
+
 for s in "${stages[@]}"; do
   case "$s" in
     asan)
@@ -127,7 +145,10 @@ for s in "${stages[@]}"; do
       [ "$s" = tsan ] || continue
       stage tsan-build-core build "$ROOT/.ws-tsan" thread clang++-14 -DCAR_FUZZ=OFF test_core || continue
       stage tsan-core tsan_run tsan-core "$ROOT/.ws-tsan/devel/lib/car/test_core" --gtest_filter="$TSAN_FILTER" ;;
-    *) echo "sanitize: unknown stage '$s' (asan, tsan, tsan-quick)"; exit 2 ;;
+    tsan-ros)
+      stage tsan-build-node build "$ROOT/.ws-tsan" thread clang++-14 -DCAR_FUZZ=OFF sim_node || continue
+      stage tsan-ros tsan_ros ;;
+    *) echo "sanitize: unknown stage '$s' (asan, tsan, tsan-quick, tsan-ros)"; exit 2 ;;
   esac
 done
 
