@@ -16,9 +16,11 @@
 // origin): the circle's speed and yaw rate averaged over its last 10 s and R = speed / yaw rate; the straight
 // run's displacement over its last 5 s / 5 s.
 //
-// Stock ODE differs from Gazebo's fork (deps/opende) where noted in docs/COMPAT-physics.md ("Skid steering:
-// measured against ODE"): no per-body max_vel / min_depth (the world's values are used), no split position
-// correction (positions follow the solved velocities), no friction_model choice (stock ODE is the pyramid).
+// Stock ODE differs from Gazebo's fork (deps/opende) where noted in docs/COMPAT-physics.md ("Skid steering
+// against stock ODE"): no per-body max_vel / min_depth (the world's values are used), no split position
+// correction (positions follow the solved velocities), no friction_model choice (stock ODE is the pyramid). The
+// fork's split is stood in for two ways: max_vel=100 (the default: uncapped, as the fork's positions see it) and
+// max_vel=0.01 (the surfaces' cap, as the fork's velocities see it; the tyres then sink).
 //
 // Usage: ode_skid [husky|jackal] [key=value ...]; keys: com_x, com_y [m] (the chassis' centre of mass in base_link,
 // added to the fixture's), fdir (turning | world | none), wheel (cylinder | sphere), max_vel [m/s] (world contact

@@ -24,7 +24,8 @@ fi
 seeds="${1:-16}"
 echo "stock ODE $(pkg-config --modversion ode), $seeds seeds each; circle (0.5 m/s, 0.5 rad/s), last 10 s of 14 s"
 # robot and the chassis' centre of mass offset [m] added to the fixture's (husky_description's inertial origin
-# -0.00065 -0.085; jackal_description's 0.012 0.002), with Gazebo's cylinder wheels and with spheres (car's rule)
+# -0.00065 -0.085; jackal_description's 0.012 0.002), with Gazebo's cylinder wheels and with spheres (car's rule);
+# then with the world's correction cap at the surfaces' max_vel 0.01 m/s (stock ODE has no split: the tyres sink)
 while read -r label args; do
   for s in $(seq 0 $((seeds - 1))); do "$out/ode_skid" $args seed=$s; done |
     awk -v label="$label" '
@@ -34,7 +35,7 @@ while read -r label args; do
         for (i = 1; i <= n; i++) { m += x[i]; if (x[i] < lo) lo = x[i]; if (x[i] > hi) hi = x[i] }
         m /= n; s = 0; for (i = 1; i <= n; i++) s += (x[i] - m) ^ 2; s = sqrt(s / (n - 1))
         return sprintf("%.4f sd %.4f [%.4f, %.4f]", m, s, lo, hi) }
-      END { printf "%-34s R %s  speed %s  yaw rate %s\n", label, stat(r, NR), stat(v, NR), stat(w, NR) }'
+      END { printf "%-36s R %s  speed %s  yaw rate %s\n", label, stat(r, NR), stat(v, NR), stat(w, NR) }'
 done <<'EOF'
 husky_centred_cylinder husky
 husky_offset_cylinder husky com_x=-0.00065 com_y=-0.085
@@ -43,4 +44,9 @@ husky_offset_sphere husky wheel=sphere com_x=-0.00065 com_y=-0.085
 jackal_centred_cylinder jackal
 jackal_real_com_cylinder jackal com_x=0.012 com_y=0.002
 jackal_centred_sphere jackal wheel=sphere
+husky_centred_cylinder_cap0.01 husky max_vel=0.01
+husky_offset_cylinder_cap0.01 husky com_x=-0.00065 com_y=-0.085 max_vel=0.01
+husky_centred_sphere_cap0.01 husky wheel=sphere max_vel=0.01
+husky_offset_sphere_cap0.01 husky wheel=sphere com_x=-0.00065 com_y=-0.085 max_vel=0.01
+jackal_centred_cylinder_cap0.01 jackal max_vel=0.01
 EOF

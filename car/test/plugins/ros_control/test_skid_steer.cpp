@@ -170,15 +170,18 @@ TEST(SkidSteer, JackalLikeTurnsAtTheDerivedYawRate) {
 // reference: stock ODE 0.16 (bench/peers/ode_skid.cpp) with Gazebo 11's contact set-up (friction pyramid, fdir1
 // turning with the wheel, kp/kd as soft ERP/CFM, quick solver 50 iterations SOR 1.3) on the same fixture with
 // car's wheel rule (a wheel collides as a sphere: one point under its centre), driven and measured as here.
-// ODE's radius over 16 seeds of its random constraint order: mean 1.3109 m, standard deviation 0.0229 m
-// (`bench/peers/ode_skid.sh`, husky_offset_sphere). car's run is deterministic; it is taken to agree with ODE
-// when it lies within 3 standard deviations of ODE's mean (where 99.7 % of ODE's own runs fall, if normal).
-// With Gazebo's cylinder wheels ODE drives R = 1.488 m (sd 0.045), which car does not reproduce; with the centre
-// of mass on the centre line the two disagree (car 0.969 m, ODE 1.185 m): docs/COMPAT-physics.md "Skid steering
-// against stock ODE". Spawned at its rest height (wheel radius - wheel joint height).
-TEST(SkidSteer, HuskyOffsetComCircleWithinODEsSpread) {
+// Stock ODE cannot do Gazebo's split correction (velocities solved with the correction capped at max_vel
+// 0.01 m/s, positions moved with the uncapped one), so it stands in for it two ways, which bracket Gazebo's:
+// uncapped, R = 1.3109 m (sd 0.0229 over 16 seeds of ODE's random constraint order), and capped at 0.01 m/s (the
+// tyres then sink), R = 2.7823 m (sd 0.0156) (`bench/peers/ode_skid.sh`: husky_offset_sphere, _cap0.01). car's
+// run is deterministic; it agrees with ODE when it lies between the lower end's mean - 3 sd and the upper end's
+// mean + 3 sd (99.7 % of ODE's own runs at either end, if normal): [1.2422, 2.8291] m. (With Gazebo's cylinder
+// tyres ODE drives 1.49 to 2.05 m; with the centre of mass on the centre line car drives 0.969 m, below ODE's
+// 1.19 to 1.55 m: docs/COMPAT-physics.md "Skid steering against stock ODE".) Spawned at its rest height.
+TEST(SkidSteer, HuskyOffsetComCircleWithinODEsBracket) {
   const Turn t = probe(kHuskyOffset, 0.1651 - 0.03282);
-  EXPECT_NEAR(t.V / t.W, 1.3109, 3 * 0.0229);
+  EXPECT_GT(t.V / t.W, 1.3109 - 3 * 0.0229);
+  EXPECT_LT(t.V / t.W, 2.7823 + 3 * 0.0156);
 }
 
 // Issue 29's target: straight commands within 5 % of the commanded speed.
