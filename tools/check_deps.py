@@ -119,6 +119,12 @@ HEADERS = {
     'omp.h': ('', ''),  # the compiler's own (libgomp, with gcc)
 }
 
+# #include prefix -> Debian package, for the peers under car/bench/ only (built by their own scripts, outside the
+# catkin build); the script that builds them must install the package (an `apt-get ... install` line naming it).
+BENCH_HEADERS = {
+    'ode/': 'libode-dev',  # car/bench/peers/ode_skid.sh: stock ODE, the skid-steer reference
+}
+
 # find_package / pkg_check_modules names -> (package.xml key, Debian package).
 CMAKE = {
     'catkin': ('catkin', 'catkin'),
@@ -260,7 +266,15 @@ def check(root):
                         gaps.append('%s: %s (PyPI %s), which no requirements file it may use pins' % (rel, what, dist))
                 else:
                     gaps.append('%s: %s, which is in no table of tools/check_deps.py; add it' % (rel, what))
+    bench_deb = set()
+    for d, _, files in os.walk(os.path.join(root, 'car', 'bench')):
+        for f in files:
+            if f.endswith('.sh'):
+                for line in open(os.path.join(d, f), encoding='utf-8', errors='replace'):
+                    if 'apt-get' in line and ' install' in line:
+                        bench_deb |= set(line.split())
     for path in cpp_files(root):
+        rel_path = os.path.relpath(path, root)
         for n, line in enumerate(open(path, encoding='utf-8', errors='replace'), 1):
             m = INCLUDE_RE.match(line)
             if not m:
@@ -272,6 +286,12 @@ def check(root):
                        'netinet/tcp.h', 'sys/socket.h', 'pthread.h', 'dlfcn.h', 'sys/mman.h', 'sys/wait.h',
                        'poll.h', 'immintrin.h'):
                 continue  # the C library and compiler intrinsics
+            bench = next((p for p in BENCH_HEADERS if inc.startswith(p)), None)
+            if bench and rel_path.startswith(os.path.join('car', 'bench') + os.sep):
+                if BENCH_HEADERS[bench] not in bench_deb:
+                    gaps.append('%s: line %d includes <%s>, from Debian package %s, which no script under car/bench/ '
+                                'installs' % (rel_path, n, inc, BENCH_HEADERS[bench]))
+                continue
             best = max((p for p in HEADERS if inc.startswith(p)), key=len, default=None)
             if best is None:
                 pkg = inc.split('/')[0]

@@ -9,9 +9,11 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 out="${TMPDIR:-/tmp}/car-ode_skid"
+# stock ODE from Debian, installed when missing (as tools/setup.sh installs the rest)
 if ! pkg-config --exists ode; then
-  echo "ode_skid.sh: stock ODE not found (pkg-config ode); install it: apt-get install libode-dev" >&2
-  exit 1
+  sudo=""; [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  echo "ode_skid.sh: installing libode-dev (stock ODE)" >&2
+  $sudo apt-get -o DPkg::Lock::Timeout=900 install -y -qq --no-install-recommends libode-dev >/dev/null
 fi
 mkdir -p "$out"
 if [[ ! -x "$out/ode_skid" || "$here/ode_skid.cpp" -nt "$out/ode_skid" ]]; then
