@@ -704,9 +704,6 @@ Physics::Impl::Impl(const WorldDescription& d, const Options& o) : options(o) {
   // carry the whole previous impulse over, so a resting solution keeps converging from step to step
   si.m_warmstartingFactor = 1.0;
   world.set_row_setup(o.rows);
-  // bounding boxes of awake objects only (Bullet's default recomputes every object's every step): static shapes and
-  // sleeping bodies do not move, and set_world_model_state updates a body it moves
-  world.setForceUpdateAllAabbs(false);
   gCalculateCombinedFrictionCallback = &min_friction;
   gCalculateCombinedRestitutionCallback = &no_restitution;
 }
@@ -944,8 +941,6 @@ bool Physics::set_world_model_state(const std::string& name, const ModelState& s
       dm.bodies[i]->setAngularVelocity(bt(st.angular));
       dm.bodies[i]->setLinearVelocity(
           bt(Eigen::Vector3d(st.linear + st.angular.cross(com.translation() - st.pose.translation()))));
-      // a sleeping body's bounding box is not updated by the step (setForceUpdateAllAabbs(false))
-      impl_->world.updateSingleAabb(dm.bodies[i]);
     }
     return true;
   }
