@@ -538,6 +538,9 @@ def main():
     if 'physics.car_core_cpp.cpu' in fig:
         # per CPU second of the stepping thread: what the machine's other load changes least (it still shares caches)
         fig['ratio.car_core_vs_mujoco_best.cpu'] = fig['physics.car_core_cpp.cpu'] / fig['physics.mujoco_strong.cpu']
+        fig['ratio.car_core_cpp_vs_mujoco_strong_plane.cpu'] = (fig['physics.car_core_cpp_plane.cpu']
+                                                                / fig['physics.mujoco_strong_plane.cpu'])
+        print('%-44s %9.2f' % ('core / MuJoCo per CPU second, bare plane', fig['ratio.car_core_cpp_vs_mujoco_strong_plane.cpu']))
         fig['ratio.car_core_vs_pybullet_10it.cpu'] = fig['physics.car_core_cpp.cpu'] / fig['physics.pybullet_10it.cpu']
         print('%-44s %9.2f %9.2f' % ('core / MuJoCo, / PyBullet 10 it. per CPU second',
                                      fig['ratio.car_core_vs_mujoco_best.cpu'],
