@@ -27,6 +27,9 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 URDF = os.path.join(ROOT, 'test', 'data', 'car_camera_lidar04.urdf')
 WORLD = os.path.join(ROOT, 'worlds', 'box_house.world')
+# the repository (car's package is its folder car/) and the catkin workspace's programs (tools/setup.sh builds .ws/)
+REPO = os.path.dirname(ROOT)
+PROGRAMS = os.path.join(REPO, '.ws', 'devel', 'lib', 'car')
 SETTLE = 3000  # steps before timing: resting world objects may fall asleep in either engine
 
 
@@ -71,10 +74,11 @@ def record(fig, samples):
         fig[key + '.samples'] = list(values)
 
 
-def core_python(steps):
-    """(steps per wall second, per CPU second of the stepping thread) of World.step(steps) on a fresh world."""
+def core_python(steps, world=WORLD):
+    """(steps per wall second, per CPU second of the stepping thread) of World.step(steps) on a fresh world
+    (box_house; None: Gazebo's empty world, a bare ground plane)."""
     from car import _core
-    w = _core.World(WORLD)
+    w = _core.World(world)
     with open(URDF) as f:
         w.spawn_urdf(f.read(), 'mycar')
     w.set_cmd_vel('mycar', 1.0, 1.0)
@@ -94,9 +98,10 @@ def parse_core(out):
     return float(words[1]), cpu
 
 
-def core_cpp(steps):
-    exe = os.path.join(ROOT, '.ws', 'devel', 'lib', 'car', 'bench_core')
-    out = subprocess.run([exe, URDF, WORLD, str(steps)], capture_output=True, text=True, check=True).stdout
+def core_cpp(steps, world=WORLD):
+    """bench_core's rates in a world (box_house; None: the empty world)."""
+    exe = os.path.join(PROGRAMS, 'bench_core')
+    out = subprocess.run([exe, URDF, world or '-', str(steps)], capture_output=True, text=True, check=True).stdout
     return parse_core(out)
 
 
@@ -216,7 +221,7 @@ def pybullet_sensors(rays_total=200000):
 
 
 def core_sensors(threads):
-    exe = os.path.join(ROOT, '.ws', 'devel', 'lib', 'car', 'bench_sensors')
+    exe = os.path.join(PROGRAMS, 'bench_sensors')
     env = dict(os.environ, OMP_NUM_THREADS=str(threads))
     out = subprocess.run([exe, URDF, WORLD, '5'], capture_output=True, text=True, check=True, env=env).stdout
     return parse_sensors(out)
@@ -241,7 +246,7 @@ def parse_sensors(out):
 def core_many(seconds=3.0):
     """bench_many: the largest number of seed cars (lidar 5.5 Hz computing, diff drive commanded) that one
     process steps at >= 1x real time, and the factor at each N it tried."""
-    exe = os.path.join(ROOT, '.ws', 'devel', 'lib', 'car', 'bench_many')
+    exe = os.path.join(PROGRAMS, 'bench_many')
     out = subprocess.run([exe, URDF, str(seconds)], capture_output=True, text=True, check=True).stdout
     tried = {}
     for line in out.splitlines():
@@ -307,7 +312,7 @@ def ros_node(seconds, kind='plain'):
         # /scan and the Kinect's cloud too. The subscriber is bench_listen (C++, TCP_NODELAY, as rviz or a nav
         # stack would be): a rospy subscriber spent about as much CPU on the 10 MB clouds as the simulator did.
         # It also sends the core row's command on /cmd_vel (latched), so the node steps the same motion.
-        listen = subprocess.Popen([os.path.join(ROOT, '.ws', 'devel', 'lib', 'car', 'bench_listen'), '--cmd', '1', '1']
+        listen = subprocess.Popen([os.path.join(PROGRAMS, 'bench_listen'), '--cmd', '1', '1']
                                   + (['--cloud'] if cloud else []), env=env, stdout=subprocess.PIPE,
                                   stderr=subprocess.DEVNULL, text=True)
         time.sleep(1.0)
@@ -367,8 +372,17 @@ def measurements(a):
     m = [
         ('car core C++', lambda: pair('physics.car_core_cpp', core_cpp(a.steps))),
         ('car core Python', lambda: pair('physics.car_core_python', core_python(a.steps))),
+        ('car core C++, bare plane', lambda: pair('physics.car_core_cpp_plane', core_cpp(a.steps, None))),
+        ('car core Python, bare plane', lambda: pair('physics.car_core_python_plane', core_python(a.steps, None))),
+        # the peer the ratios use (bench_mujoco.py: the strongest faithful model), in this process like the
+        # Python core rows
+        ('MuJoCo strong', lambda: pair('physics.mujoco_strong', bench_mujoco.rates(a.steps, peer='strong'))),
+        ('MuJoCo strong, bare plane', lambda: pair('physics.mujoco_strong_plane',
+                                                   bench_mujoco.rates(a.steps, peer='strong', world_file=None))),
+        # the old model, for comparison
         ('MuJoCo', lambda: pair('physics.mujoco', bench_mujoco.rates(a.steps))),
         ('MuJoCo sleeping', lambda: pair('physics.mujoco_sleep', bench_mujoco.rates(a.steps, sleep=True))),
+        ('MuJoCo, bare plane', lambda: pair('physics.mujoco_plane', bench_mujoco.rates(a.steps, world_file=None))),
         ('PyBullet', lambda: pair('physics.pybullet_default', pybullet_steps(a.steps))),
         ('PyBullet 10 it.', lambda: pair('physics.pybullet_10it', pybullet_steps(a.steps, iterations=10))),
         ('car ROS node', lambda: pair('physics.car_ros_node', ros_node_subprocess(a.seconds, 'plain'))),
@@ -434,9 +448,13 @@ def main():
     if a.sensors:
         fig['bench.many_repeat'] = many_rounds
         fig['bench.method'] += '; the many-robots search in %d of the rounds' % many_rounds
-    mj_rest, mj_radius = bench_mujoco.validate()
-    fig['physics.mujoco.rest_height_m'] = mj_rest
-    fig['physics.mujoco.circle_radius_m'] = mj_radius
+    # the peers are validated against car before they are timed (bench_mujoco.validate: the same measurements of
+    # both engines); the strong model's figures under physics.mujoco_strong.validation.*, car's under .car.*
+    for peer, key in (('strong', 'physics.mujoco_strong.validation'), ('old', 'physics.mujoco.validation')):
+        v = bench_mujoco.validate(peer)
+        bench_mujoco.print_validation(v, peer)
+        for k, x in v.items():
+            fig['%s.%s' % (key, k)] = x
     t0 = time.perf_counter()
     load_start, loads = os.getloadavg()[0], []
 
@@ -459,19 +477,19 @@ def main():
         ('car core (Python API, World.step)', 'physics.car_core_python'),
         ('car ROS node (sim.launch rtf:=0)', 'physics.car_ros_node'),
         ('car ROS node alone (bench/node_alone.launch)', 'physics.car_ros_node_alone'),
-        ('MuJoCo %s (implicitfast, sleeping off)' % bench_mujoco.version(), 'physics.mujoco'),
-        ('MuJoCo, island sleeping on', 'physics.mujoco_sleep'),
+        ('MuJoCo %s, strong model (the peer)' % bench_mujoco.version(), 'physics.mujoco_strong'),
+        ('MuJoCo, old model, sleeping off', 'physics.mujoco'),
+        ('MuJoCo, old model, island sleeping on', 'physics.mujoco_sleep'),
         ('PyBullet %s, default solver (50 iterations)' % __import__('pybullet').getAPIVersion(),
          'physics.pybullet_default'),
         ('PyBullet, 10 solver iterations (as car)', 'physics.pybullet_10it'),
     ]
-    mj_best = max(fig['physics.mujoco'], fig['physics.mujoco_sleep'])
-    mj_median = max(fig['physics.mujoco.median'], fig['physics.mujoco_sleep.median'])
+    mj_best = fig['physics.mujoco_strong']
+    mj_median = fig['physics.mujoco_strong.median']
     print()
     print('physics at 1 kHz, seed car (car_camera_lidar04) in box_house, commanded v = 1 m/s, w = 1 rad/s;')
     print(fig['bench.method'])
-    print('MuJoCo model check (bare ground): base at rest %.4f m (car 0.055), circle radius %.3f m (car 1.000)'
-          % (mj_rest, mj_radius))
+    print('"vs MuJoCo": against the strong model (validated above)')
     print('%-44s %9s %9s %9s %7s %9s %7s %9s' % ('', 'best/s', 'median/s', 'CPU s/s', 'x real', 'vs MuJoCo',
                                                'vs PyB', 'vs PyB 10'))
     for name, key in rows:
@@ -480,6 +498,32 @@ def main():
         print('%-44s %9.0f %9.0f %9s %7.1f %9.2f %7.2f %9.2f' % (
             name, rate, fig[key + '.median'], '%.0f' % cpu if cpu else '-', rate / 1000.0, rate / mj_best,
             rate / fig['physics.pybullet_default'], rate / fig['physics.pybullet_10it']))
+    print()
+    print('bare ground plane, same car and command')
+    for name, key, peer in (('car core (C++ bench_core)', 'physics.car_core_cpp_plane', 'physics.mujoco_strong_plane'),
+                            ('car core (Python API, World.step)', 'physics.car_core_python_plane',
+                             'physics.mujoco_strong_plane'),
+                            ('MuJoCo, strong model (the peer)', 'physics.mujoco_strong_plane', None),
+                            ('MuJoCo, old model', 'physics.mujoco_plane', None)):
+        print('%-44s %9.0f %9.0f %9s %7.1f %9s' % (
+            name, fig[key], fig[key + '.median'], '%.0f' % fig[key + '.cpu'] if key + '.cpu' in fig else '-',
+            fig[key] / 1000.0, '%.2f' % (fig[key] / fig[peer]) if peer else ''))
+    # core against the strong peer, in box_house and on the bare plane; the Python rows were measured in the same
+    # process as MuJoCo, interleaved with it
+    for sfx in ('', '_plane'):
+        for lang in ('cpp', 'python'):
+            core, peer = 'physics.car_core_%s%s' % (lang, sfx), 'physics.mujoco_strong%s' % sfx
+            fig['ratio.car_core_%s_vs_mujoco_strong%s' % (lang, sfx)] = fig[core] / fig[peer]
+            fig['ratio.car_core_%s_vs_mujoco_strong%s.median' % (lang, sfx)] = (fig[core + '.median']
+                                                                             / fig[peer + '.median'])
+    fig['ratio.mujoco_strong_vs_old'] = fig['physics.mujoco_strong'] / max(fig['physics.mujoco'],
+                                                                           fig['physics.mujoco_sleep'])
+    fig['ratio.mujoco_strong_vs_old_plane'] = fig['physics.mujoco_strong_plane'] / fig['physics.mujoco_plane']
+    for k in ('ratio.car_core_cpp_vs_mujoco_strong', 'ratio.car_core_python_vs_mujoco_strong',
+              'ratio.car_core_cpp_vs_mujoco_strong_plane', 'ratio.car_core_python_vs_mujoco_strong_plane'):
+        print('%-44s %9.2f %9.2f' % (k[len('ratio.'):] + ' (best, median)', fig[k], fig[k + '.median']))
+    print('%-44s %9.2f %9.2f' % ('MuJoCo strong / old model, box_house, plane', fig['ratio.mujoco_strong_vs_old'],
+                                 fig['ratio.mujoco_strong_vs_old_plane']))
     fig['ratio.car_core_vs_mujoco_best'] = fig['physics.car_core_cpp'] / mj_best
     fig['ratio.car_core_vs_pybullet_10it'] = fig['physics.car_core_cpp'] / fig['physics.pybullet_10it']
     fig['ratio.ros_node_vs_core'] = fig['physics.car_ros_node'] / fig['physics.car_core_cpp']
@@ -493,8 +537,10 @@ def main():
     fig['ratio.car_core_python_vs_cpp'] = fig['physics.car_core_python'] / fig['physics.car_core_cpp']
     if 'physics.car_core_cpp.cpu' in fig:
         # per CPU second of the stepping thread: what the machine's other load changes least (it still shares caches)
-        fig['ratio.car_core_vs_mujoco_best.cpu'] = fig['physics.car_core_cpp.cpu'] / max(
-            fig['physics.mujoco.cpu'], fig['physics.mujoco_sleep.cpu'])
+        fig['ratio.car_core_vs_mujoco_best.cpu'] = fig['physics.car_core_cpp.cpu'] / fig['physics.mujoco_strong.cpu']
+        fig['ratio.car_core_cpp_vs_mujoco_strong_plane.cpu'] = (fig['physics.car_core_cpp_plane.cpu']
+                                                                / fig['physics.mujoco_strong_plane.cpu'])
+        print('%-44s %9.2f' % ('core / MuJoCo per CPU second, bare plane', fig['ratio.car_core_cpp_vs_mujoco_strong_plane.cpu']))
         fig['ratio.car_core_vs_pybullet_10it.cpu'] = fig['physics.car_core_cpp.cpu'] / fig['physics.pybullet_10it.cpu']
         print('%-44s %9.2f %9.2f' % ('core / MuJoCo, / PyBullet 10 it. per CPU second',
                                      fig['ratio.car_core_vs_mujoco_best.cpu'],

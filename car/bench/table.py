@@ -14,13 +14,30 @@ import sys
 def _rows(f, g):
     """(figure, value text, target, met) of each row; g(key) reads a figure (its best, or its median)."""
     core = g('physics.car_core_cpp')
-    mj = max(g('physics.mujoco'), g('physics.mujoco_sleep'))
     pb10 = g('physics.pybullet_10it')
-    rows = [
-        ('core physics, seed car in box_house, 1 kHz [steps/s]',
-         '%.0f; %.2fx MuJoCo (best of sleeping on/off: %.0f), %.2fx PyBullet at 10 it. (%.0f)'
-         % (core, core / mj, mj, core / pb10, pb10),
-         '>= MuJoCo; >= 4x PyBullet', core >= mj and core >= 4 * pb10),
+    if 'physics.mujoco_strong' in f:
+        # runs since the strong MuJoCo model (bench_mujoco.py): the core against it in box_house and on the bare
+        # plane, the old model's figure beside it
+        mj, old = g('physics.mujoco_strong'), max(g('physics.mujoco'), g('physics.mujoco_sleep'))
+        plane, mj_plane = g('physics.car_core_cpp_plane'), g('physics.mujoco_strong_plane')
+        rows = [
+            ('core physics, seed car in box_house, 1 kHz [steps/s]',
+             '%.0f; %.2fx MuJoCo (strong model: %.0f; old model %.0f), %.2fx PyBullet at 10 it. (%.0f)'
+             % (core, core / mj, mj, old, core / pb10, pb10),
+             '>= MuJoCo; >= 4x PyBullet', core >= mj and core >= 4 * pb10),
+            ('core physics, the same car on a bare ground plane [steps/s]',
+             '%.0f; %.2fx MuJoCo (strong model: %.0f; old model %.0f)'
+             % (plane, plane / mj_plane, mj_plane, g('physics.mujoco_plane')), '>= MuJoCo', plane >= mj_plane),
+        ]
+    else:
+        mj = max(g('physics.mujoco'), g('physics.mujoco_sleep'))
+        rows = [
+            ('core physics, seed car in box_house, 1 kHz [steps/s]',
+             '%.0f; %.2fx MuJoCo (best of sleeping on/off: %.0f), %.2fx PyBullet at 10 it. (%.0f)'
+             % (core, core / mj, mj, core / pb10, pb10),
+             '>= MuJoCo; >= 4x PyBullet', core >= mj and core >= 4 * pb10),
+        ]
+    rows += [
         ('ROS node `rtf:=0`, /odom subscribed [steps/s]',
          '%.0f = %.0f %% of the core' % (g('physics.car_ros_node'), 100 * g('physics.car_ros_node') / core),
          '>= 90 % of the core', g('physics.car_ros_node') >= 0.9 * core),

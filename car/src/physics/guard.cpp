@@ -17,10 +17,11 @@ namespace {
 
 bool finite(const btVector3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
 
+// A pose is finite when its origin and its rotation matrix are (the matrix's quaternion is then finite too; reading
+// the matrix costs no conversion).
 bool finite(const btTransform& T) {
-  const btQuaternion q = T.getRotation();
-  return finite(T.getOrigin()) && std::isfinite(q.x()) && std::isfinite(q.y()) && std::isfinite(q.z()) &&
-         std::isfinite(q.w());
+  const btMatrix3x3& R = T.getBasis();
+  return finite(T.getOrigin()) && finite(R[0]) && finite(R[1]) && finite(R[2]);
 }
 
 std::string vec(const btVector3& v) {
@@ -48,6 +49,8 @@ std::string first_non_finite(const btMultiBodyDynamicsWorld& world, const std::v
   const btCollisionObjectArray& objs = world.getCollisionObjectArray();
   for (int i = 0; i < objs.size(); ++i) {
     const btCollisionObject* o = objs[i];
+    // the world's static shapes never move (a robot's fixed base is checked with its multibody below)
+    if (o->getInternalType() == btCollisionObject::CO_COLLISION_OBJECT && o->isStaticObject()) continue;
     if (!finite(o->getWorldTransform()))
       return name_of(o, names) + ": position " + vec(o->getWorldTransform().getOrigin());
     if (const btRigidBody* rb = btRigidBody::upcast(o)) {

@@ -337,6 +337,21 @@ void IslandWorld::solveConstraints(btContactSolverInfo& info) {
   m_constraintSolver->allSolved(info, m_debugDrawer);
 }
 
+// btMultiBodyDynamicsWorld::predictUnconstraintMotion: the rigid bodies' predicted transforms (Bullet's), then each
+// multibody's (predictMultiBodyTransforms) only if a rigid body may sweep; a sleeping multibody's velocities are
+// cleared either way, as Bullet's pass does. The predicted positions go to the *_interpolate members and the
+// colliders' interpolation transforms, which only a rigid body's CCD sweep reads: without one the step is the same
+// bit for bit.
+void IslandWorld::predictUnconstraintMotion(btScalar dt) {
+  if (ccd_bodies()) {
+    btMultiBodyDynamicsWorld::predictUnconstraintMotion(dt);
+    return;
+  }
+  btDiscreteDynamicsWorld::predictUnconstraintMotion(dt);
+  for (int i = 0; i < m_multiBodies.size(); ++i)
+    if (sleeping(m_multiBodies[i])) m_multiBodies[i]->clearVelocities();
+}
+
 // Whether a rigid body may sweep (Bullet's test in btDiscreteDynamicsWorld::integrateTransforms).
 bool IslandWorld::ccd_bodies() const {
   if (!getDispatchInfo().m_useContinuous) return false;

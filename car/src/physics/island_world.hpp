@@ -50,6 +50,10 @@ class IslandWorld : public btMultiBodyDynamicsWorld {
   // Bullet's, with the multibodies integrated in their islands' tasks, or on the OpenMP threads.
   void integrateTransforms(btScalar dt) override;
 
+  // Bullet's, without the multibodies' predicted transforms when no rigid body sweeps (CCD): those transforms
+  // (btMultiBody::predictPositionsMultiDof, the colliders' interpolation transforms) are read by nothing else.
+  void predictUnconstraintMotion(btScalar dt) override;
+
  protected:
   void solveConstraints(btContactSolverInfo& info) override;
 

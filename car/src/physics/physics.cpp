@@ -746,6 +746,10 @@ void Physics::Impl::add_world_model(const WorldModelDesc& m) {
         objects.emplace_back(obj);
         name_object(obj, m.name + "/" + l.name);
         model_objects[m.name].push_back(obj);
+        // Static objects are asleep, as Bullet makes static rigid bodies (btDiscreteDynamicsWorld::addRigidBody):
+        // a pair of a static object and a sleeping body then has no narrow phase and no island manifold (an awake
+        // object still wakes nothing static: activate() leaves CF_STATIC_OBJECT alone).
+        obj->setActivationState(ISLAND_SLEEPING);
         world.addCollisionObject(obj, btBroadphaseProxy::StaticFilter,
                                  btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter);
       }

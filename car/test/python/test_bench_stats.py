@@ -136,3 +136,15 @@ def test_table_says_when_the_many_robots_search_ran_in_fewer_rounds():
     assert '| 6.8 M; 34.00x PyBullet rayTestBatch (0.2 M) |' in text
     assert '| 50; 4.0x PyBullet TinyRenderer (12.5) |' in text
     assert 'The many-robots search (a bisection of about 35 s) ran in 2 of the rounds.' in text
+
+
+def test_table_compares_the_core_with_the_strong_mujoco_model_in_both_worlds():
+    # a record with the strong peer: box_house 40000 / 50000 = 0.80x (old model: max(20000, 32000)), bare plane
+    # 60000 / 48000 = 1.25x, met
+    f = _physics_record(**{'physics.mujoco_strong': 50000.0, 'physics.car_core_cpp_plane': 60000.0,
+                           'physics.mujoco_strong_plane': 48000.0, 'physics.mujoco_plane': 30000.0})
+    text = table.render(f)
+    assert ('| 40000; 0.80x MuJoCo (strong model: 50000; old model 32000), 4.00x PyBullet at 10 it. (10000) '
+            '| >= MuJoCo; >= 4x PyBullet | **no** |') in text
+    assert ('| core physics, the same car on a bare ground plane [steps/s] '
+            '| 60000; 1.25x MuJoCo (strong model: 48000; old model 30000) | >= MuJoCo | yes |') in text
