@@ -102,6 +102,8 @@ recheck() {  # recheck TARGET
 broken=0
 summary=""
 for t in "${targets[@]}"; do
+  # SECONDS 0: fuzz nothing (--cov or --save over the corpora there are); libFuzzer reads -max_total_time=0 as no limit
+  [ "$secs" -gt 0 ] || [ $recheck_only -eq 1 ] || continue
   if [ $recheck_only -eq 1 ]; then
     recheck "$t"
     found=$(find "$ROOT/car/test/fuzz/out/$t" -maxdepth 1 -type f 2>/dev/null | wc -l)
