@@ -17,7 +17,7 @@ cd "$ROOT/car"
 # shellcheck source=tools/sanitizers/workspace.sh
 source "$ROOT/tools/sanitizers/workspace.sh"
 ensure_clang || { echo "sanitizers: could not install clang 14"; exit 1; }
-ALL=(urdf sdf_world sdf_model spawn ros_control)
+ALL=(urdf sdf_world sdf_model spawn ros_control flatten)
 secs=600 cov=0 build=1 recheck_only=0 save=0 targets=()
 for a in "$@"; do
   case "$a" in
@@ -58,7 +58,7 @@ seeds() {  # seeds TARGET DIR
   rm -rf "$d"; mkdir -p "$d"
   case "$t" in
     urdf) find test/data urdf -name '*.urdf' -size -256k -exec cp -t "$d" --backup=numbered {} + ;;
-    sdf_world) find test/data worlds -name '*.world' -size -256k -exec cp -t "$d" --backup=numbered {} + ;;
+    sdf_world|flatten) find test/data worlds -name '*.world' -size -256k -exec cp -t "$d" --backup=numbered {} + ;;
     sdf_model) find test/data models -name '*.sdf' -size -256k -exec cp -t "$d" --backup=numbered {} + ;;
     spawn)
       # the request header (name|namespace|frame|pose, then a set_model_state) over each robot
