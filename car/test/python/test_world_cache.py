@@ -4,11 +4,13 @@ descriptions; a run's results must not depend on what the worker ran before.
 Scenario A: the seed car (seeded lidar noise, stddev 0.01 m) wandering in box_house with the lidar controller
 (examples/wander.py), so the scan feeds back into the commands. B1: the same world and model, another seed and pose
 (the same cached objects, other mutable state). B2: the empty world. A after B1 and B2 must give A's first result
-byte for byte.
+byte for byte, and the same bytes as A in a new process (a cold worker).
 """
 import json
 import os
 import shutil
+import subprocess
+import sys
 
 from conftest import DATA, ROOT
 from car import _core, batch_run, scenario, world_cache
@@ -40,6 +42,12 @@ def test_a_run_is_bit_identical_after_other_runs_in_the_same_worker():
     batch_run.run(run_of(None, 3, 0.5, 0.0, 1.0, controller=False))
     again = result_bytes(batch_run.run(a))
     assert first == again
+    # a cold worker: A alone in a new process
+    code = ('import json, sys; from car import batch_run; from test_world_cache import result_bytes; '
+            'sys.stdout.buffer.write(result_bytes(batch_run.run(json.load(sys.stdin))))')
+    cold = subprocess.run([sys.executable, '-c', code], input=json.dumps(a), capture_output=True, text=True,
+                          cwd=os.path.dirname(os.path.abspath(__file__)), check=True).stdout.encode()
+    assert cold == first
     # the run saw the noisy scan and moved: the comparison is not between two empty results
     row = json.loads(first)['robots'][0]
     assert row['min_obstacle'] == row['min_obstacle'] and row['distance'] > 0.1
