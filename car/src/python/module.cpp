@@ -513,8 +513,10 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("step_size", [](const WorldDescription& d) { return d.step_size; }, "[s]")
       .def("to_dict", &world_dict, "The description as load_world_file returns it.");
   m.def(
-      "parse_world_file", [](const std::string& path) { return std::make_shared<WorldDescription>(load_world_file(path)); },
-      py::arg("path"), "An SDF world parsed once (sdformat, includes resolved, <state> applied), as a WorldDescription.");
+      "parse_world_file",
+      [](const std::string& path) { return std::make_shared<WorldDescription>(load_world_file(path)); },
+      py::arg("path"),
+      "An SDF world parsed once (sdformat, includes resolved, <state> applied), as a WorldDescription.");
   m.def(
       "parse_world_string",
       [](const std::string& xml, const std::string& source) {
