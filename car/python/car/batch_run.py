@@ -18,6 +18,8 @@ import math
 import time
 import traceback
 
+from car import world_cache
+
 SAMPLE_HZ = 100.0  # [Hz] how often distance and contacts are sampled
 
 
@@ -50,35 +52,20 @@ def _model_text(robot: dict) -> str:
     return _MODELS[key]
 
 
-_GROUNDS = {}
-
-
-def _ground_models(world_file):
-    """Names of the world's models that hold a plane (the ground): touching them is not a collision (cached per
-    worker process and file version)."""
-    if not world_file:
-        return {'ground_plane'}
-    import os
-    key = (world_file, os.path.getmtime(world_file))
-    if key not in _GROUNDS:
-        from car import _core
-        desc = _core.load_world_file(world_file)
-        _GROUNDS[key] = {m['name'] for m in desc['models']
-                         if any(c['type'] == 'plane' for l in m['links'] for c in l['collisions'])}
-    return _GROUNDS[key]
-
-
 def simulate(sc: dict) -> dict:
     """Runs one validated scenario; returns {'sim_time', 'robots': [per-robot metrics and trajectory]}."""
     from car import _core
-    world = _core.World(sc['world'], seed=sc['seed'])
+    # the world and the robots' models are parsed once per worker (car.world_cache); each run builds its own
+    # World from those const descriptions, so a run's results do not depend on what the worker ran before
+    desc, ground = world_cache.world_description(sc['world'])
+    world = _core.World(desc, seed=sc['seed'])
     dt = world.dt
-    ground = _ground_models(sc['world'])
     robots = sc['robots']
     lidars = {}
     for r in robots:
         p = r['pose']
-        world.spawn_urdf(_model_text(r), r['name'], p['x'], p['y'], p['z'], p['roll'], p['pitch'], p['yaw'])
+        world.spawn_model(world_cache.robot_model(_model_text(r), r['name']), r['name'], p['x'], p['y'], p['z'],
+                          p['roll'], p['pitch'], p['yaw'])
     for s in world.sensors():
         if s['kind'] == 'laser' and s['robot'] not in lidars:
             lidars[s['robot']] = s['plugin']

@@ -22,6 +22,7 @@ import gymnasium
 import numpy as np
 from gymnasium import spaces
 
+from car import world_cache
 from car.paths import package_dir
 
 ROOT = package_dir()
@@ -85,15 +86,13 @@ class DriveEnv(gymnasium.Env):
 
     # ---- building blocks (also used by the vector env) ----
     def _ground_models(self):
-        if not self.world_file:
-            return {'ground_plane'}
-        desc = self._core.load_world_file(self.world_file)
-        return {m['name'] for m in desc['models'] if any(c['type'] == 'plane' for l in m['links']
-                                                         for c in l['collisions'])}
+        return set(world_cache.world_description(self.world_file)[1])
 
     def _build(self, seed, pose):
-        w = self._core.World(self.world_file, seed=seed)
-        w.spawn_urdf(_model_text(self.model_file), self.ROBOT, pose[0], pose[1], 0.0, 0.0, 0.0, pose[2])
+        # a reset builds a new World from the world and robot parsed once per process (car.world_cache)
+        w = self._core.World(world_cache.world_description(self.world_file)[0], seed=seed)
+        w.spawn_model(world_cache.robot_model(_model_text(self.model_file), self.ROBOT), self.ROBOT, pose[0], pose[1],
+                      0.0, 0.0, 0.0, pose[2])
         return w
 
     def _latest_scan(self):

@@ -504,7 +504,48 @@ PYBIND11_MODULE(_core, m) {
       [](const std::string& xml, const std::string& source) { return world_dict(load_world_string(xml, source)); },
       py::arg("xml"), py::arg("source") = "<string>", "load_world_file for SDF text.");
 
+  // Parsed once, built many times: a world's const description and a robot's const model as opaque handles. A
+  // World built from them copies what it keeps, so one handle serves every run of a worker (docs/BATCH.md).
+  py::class_<WorldDescription, std::shared_ptr<WorldDescription>>(
+      m, "WorldDescription", "A parsed SDF world (const): pass it to World() to build a world without parsing again.")
+      .def_property_readonly("name", [](const WorldDescription& d) { return d.name; })
+      .def_property_readonly("source", [](const WorldDescription& d) { return d.source; })
+      .def_property_readonly("step_size", [](const WorldDescription& d) { return d.step_size; }, "[s]")
+      .def("to_dict", &world_dict, "The description as load_world_file returns it.");
+  m.def(
+      "parse_world_file",
+      [](const std::string& path) { return std::make_shared<WorldDescription>(load_world_file(path)); },
+      py::arg("path"),
+      "An SDF world parsed once (sdformat, includes resolved, <state> applied), as a WorldDescription.");
+  m.def(
+      "parse_world_string",
+      [](const std::string& xml, const std::string& source) {
+        return std::make_shared<WorldDescription>(load_world_string(xml, source));
+      },
+      py::arg("xml"), py::arg("source") = "<string>", "parse_world_file for SDF text.");
+  m.def(
+      "empty_world_description", [] { return std::make_shared<WorldDescription>(empty_world()); },
+      "Gazebo's empty world (ground plane, sun) as a WorldDescription.");
+  py::class_<RobotModel, std::shared_ptr<RobotModel>>(
+      m, "RobotModel", "A parsed URDF robot (const): pass it to World.spawn_model to spawn it without parsing again.")
+      .def_property_readonly("name", [](const RobotModel& r) { return r.name; })
+      .def("to_dict", &model_dict, "The model as load_urdf_string returns it.");
+  m.def(
+      "parse_urdf_string",
+      [](const std::string& xml, const std::string& source) {
+        return std::make_shared<RobotModel>(load_urdf_string(xml, source));
+      },
+      py::arg("xml"), py::arg("source") = "<string>", "URDF text parsed once into a RobotModel. Raises LoadError.");
+
   py::class_<World>(m, "World", "A simulated world, stepped in fixed ticks. No ROS master needed.")
+      .def(py::init([](const WorldDescription& desc, int solver_iterations, uint64_t seed) {
+             WorldOptions o;
+             o.solver_iterations = solver_iterations;
+             o.seed = seed;
+             return std::make_unique<World>(desc, o);  // a copy: the description stays as it was
+           }),
+           py::arg("description"), py::arg("solver_iterations") = 10, py::arg("seed") = 0,
+           "Build a world from a parsed WorldDescription (parse_world_file), without parsing again.")
       .def(py::init([](const std::optional<std::string>& world_file, int solver_iterations, uint64_t seed) {
              WorldOptions o;
              o.solver_iterations = solver_iterations;
@@ -525,6 +566,15 @@ PYBIND11_MODULE(_core, m) {
           py::arg("xml"), py::arg("name"), py::arg("x") = 0.0, py::arg("y") = 0.0, py::arg("z") = 0.0,
           py::arg("roll") = 0.0, py::arg("pitch") = 0.0, py::arg("yaw") = 0.0, py::arg("robot_namespace") = "",
           "Spawn a robot from URDF text with its root link at the given pose.")
+      .def(
+          "spawn_model",
+          [](World& w, const RobotModel& model, const std::string& name, double x, double y, double z, double roll,
+             double pitch, double yaw, const std::string& ns) {
+            w.spawn(model, name, pose_of(x, y, z, roll, pitch, yaw), ns);
+          },
+          py::arg("model"), py::arg("name"), py::arg("x") = 0.0, py::arg("y") = 0.0, py::arg("z") = 0.0,
+          py::arg("roll") = 0.0, py::arg("pitch") = 0.0, py::arg("yaw") = 0.0, py::arg("robot_namespace") = "",
+          "spawn_urdf for a parsed RobotModel (parse_urdf_string): the world keeps its own copy.")
       .def(
           "spawn_sdf",
           [](World& w, const std::string& xml, const std::string& name, double x, double y, double z, double roll,
