@@ -122,7 +122,8 @@ tsan_run() {  # tsan_run NAME BINARY [ARGS...]
 tsan_ros() {
   local d="$OUT/tsan-ros" t rc=0; rm -rf "$d"; mkdir -p "$d"
   for t in node_rates sensors; do
-    ( set +u; source "$ROOT/.ws-tsan/devel/setup.bash"; set -u
+    # the venv first, as .ws/'s env hook puts it (this workspace's hook looks for one beside its src/)
+    ( set +u; source "$ROOT/.ws-tsan/devel/setup.bash"; set -u; export PATH="$ROOT/.venv/bin:$PATH"
       OMP_NUM_THREADS=2 TSAN_OPTIONS="log_path=$d/tsan:halt_on_error=0:second_deadlock_stack=1:report_signal_unsafe=0:suppressions=$SUPP/tsan.supp" \
         rostest car "$t.test" > "$d-$t.log" 2>&1 ) || rc=1
     tail -n 4 "$d-$t.log"
