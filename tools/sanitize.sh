@@ -48,7 +48,7 @@ build() {  # build WS SANITIZERS CXX EXTRA_CMAKE_ARG TARGETS...
   if [ ! -f "$ws/build/Makefile" ]; then
     (cd "$ws" && CC="$cc" CXX="$cxx" catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 \
       -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
-      -DCATKIN_ENABLE_TESTING=ON -DCAR_SANITIZE="$san" "$extra" -j"$JOBS" "$@" > build.log 2>&1) ||
+      -DCATKIN_ENABLE_TESTING=ON -DCAR_SANITIZE="$san" -DCAR_VENV="$ROOT/.venv" "$extra" -j"$JOBS" "$@" > build.log 2>&1) ||
       { tail -n 40 "$ws/build.log"; return 1; }
   else
     make -C "$ws/build" -j"$JOBS" "$@" > "$ws/build.log" 2>&1 || { tail -n 40 "$ws/build.log"; return 1; }
@@ -123,7 +123,12 @@ tsan_ros() {
   local d="$OUT/tsan-ros" t rc=0; rm -rf "$d"; mkdir -p "$d"
   for t in node_rates sensors; do
     # the venv first, as .ws/'s env hook puts it (this workspace's hook looks for one beside its src/)
+    # car's Python package from .ws/ (tools/setup.sh's release build, with car._core): the tools and the tests are
+    # Python, only sim_node is instrumented
     ( set +u; source "$ROOT/.ws-tsan/devel/setup.bash"; set -u; export PATH="$ROOT/.venv/bin:$PATH"
+      export PYTHONPATH="$ROOT/.ws/devel/lib/python3/dist-packages:$PYTHONPATH"
+      # each binary finds its own libcar_sim by its RUNPATH: sim_node the TSan one, car._core the release one
+      unset LD_LIBRARY_PATH
       OMP_NUM_THREADS=2 TSAN_OPTIONS="log_path=$d/tsan:halt_on_error=0:second_deadlock_stack=1:report_signal_unsafe=0:suppressions=$SUPP/tsan.supp" \
         rostest car "$t.test" > "$d-$t.log" 2>&1 ) || rc=1
     tail -n 4 "$d-$t.log"
