@@ -10,12 +10,6 @@
 
 namespace car_sim {
 
-// A body twist command: linear [m/s] and angular [rad/s], in the robot's base frame.
-struct Twist {
-  Eigen::Vector3d linear = Eigen::Vector3d::Zero();
-  Eigen::Vector3d angular = Eigen::Vector3d::Zero();
-};
-
 // A plug-in that drives the robot's base from a twist command (cmd_vel).
 class TwistDrive {
  public:

@@ -14,6 +14,7 @@
 
 #include "car_sim/model.hpp"
 #include "car_sim/plugins.hpp"
+#include "car_sim/ports.hpp"
 #include "car_sim/raycast.hpp"
 #include "car_sim/state.hpp"
 
@@ -160,6 +161,9 @@ class Plugin {
   // default). A plug-in may leave the other parts out of the outputs it makes from then on; a kind without parts
   // ignores this.
   virtual void set_parts(uint32_t parts) {}
+  // A value for one of its input ports (World::command has checked that it fits the port and is finite); notes
+  // for the log go to *result. Between steps only.
+  virtual void command(const std::string& port, const Command& value, CommandResult* result) {}
 };
 
 // What the resolver hands a kind's finish(): the plug-in being resolved, its model and where to report.
@@ -200,9 +204,16 @@ struct PluginKind {
   std::string output_group;                 // key of its outputs in Python's take_sensor_outputs(), e.g. "scans"
   // Checks resolved values against the model and fills derived defaults (ctx.fail for errors).
   std::function<void(ResolveContext&)> finish;
+  // Its input ports for a resolved configuration on a robot, topics resolved (none: no inputs).
+  std::function<std::vector<InputPort>(const PluginConfig& config, const std::string& robot)> inputs;
   // An instance for a resolved configuration. seed: the world's noise seed.
   std::function<std::unique_ptr<Plugin>(const PluginConfig& config, const std::string& robot, uint64_t seed)> make;
 };
+
+// A kind's `inputs` for one port of `type` on the topic its schema key `topic_key` names, under the plug-in's
+// namespace (plugin_robot_namespace); the port has no topic while the key is empty.
+std::function<std::vector<InputPort>(const PluginConfig&, const std::string&)> topic_input(
+    const std::string& port, InputType type, const std::string& topic_key, uint32_t queue, uint32_t axes = kAllAxes);
 
 // Every registered kind, in registration order.
 const std::vector<const PluginKind*>& plugin_kinds();

@@ -170,3 +170,39 @@ void OdometryOut::visit(FieldVisitor& v) const {
 }
 
 }  // namespace car_sim
+
+// ---- ports ----------------------------------------------------------------------------------------------------
+
+namespace car_sim {
+
+std::string resolve_topic(const std::string& ns, const std::string& topic) {
+  if (!topic.empty() && topic[0] == '/') return topic;
+  return ns.empty() ? "/" + topic : "/" + ns + "/" + topic;
+}
+
+std::function<std::vector<InputPort>(const PluginConfig&, const std::string&)> topic_input(
+    const std::string& port, InputType type, const std::string& topic_key, uint32_t queue, uint32_t axes) {
+  return [=](const PluginConfig& c, const std::string& robot) {
+    InputPort p;
+    p.name = port;
+    p.type = type;
+    const std::string topic = c.text(topic_key);
+    if (!topic.empty()) p.topic = resolve_topic(plugin_robot_namespace(c, robot), topic);
+    p.queue = queue;
+    p.axes = axes;
+    return std::vector<InputPort>{p};
+  };
+}
+
+const char* command_noun(InputType type) {
+  switch (type) {
+    case InputType::Twist: return "cmd_vel";
+    case InputType::Wrench: return "wrench";
+    case InputType::JointTrajectory: return "trajectory";
+    case InputType::Pose: return "pose target";
+    case InputType::Trigger: return "trigger";
+  }
+  return "command";
+}
+
+}  // namespace car_sim

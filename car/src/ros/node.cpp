@@ -220,7 +220,9 @@ void SimNode::publish_outputs() {
     const auto robot = route_.find(o->robot);
     if (robot == route_.end()) continue;
     const auto it = robot->second.find(o->plugin);
-    if (it != robot->second.end()) it->second->publish_owned(std::move(o), *this);
+    if (it == robot->second.end()) continue;
+    it->second.adapter->publish_owned(std::move(o), *this);
+    if (it->second.polled) it->second.polled->poll();
   }
   // lazy plug-ins compute only while someone listens; look every 50 steps
   if (tick % 50 == 0) update_activity();
@@ -297,15 +299,22 @@ void SimNode::make_io(const std::string& name) {
     PluginIO pio;
     pio.info = p;
     const AdapterKind* a = find_adapter(p.config.kind);
-    if (!a) {
+    if (!a && p.inputs.empty()) {
       ROS_WARN("car: %s: plug-in '%s' (%s) is simulated but has no ROS adapter; nothing is published for it",
                name.c_str(), p.config.name.c_str(), p.config.filename.c_str());
       io.plugins.push_back(std::move(pio));
       continue;
     }
-    pio.adapter = a->make();
-    const std::string offers = pio.adapter->setup(p, info, *this);
-    route_[name][p.config.name] = pio.adapter.get();
+    std::string offers;
+    if (a) {
+      pio.adapter = a->make();
+      offers = pio.adapter->setup(p, info, *this);
+    }
+    // the input ports: one subscriber factory per sample type (inputs.cpp)
+    pio.inputs = std::make_unique<InputPorts>();
+    const std::string inputs = pio.inputs->setup(p, *this);
+    if (!a && !inputs.empty()) offers = "input " + inputs;
+    if (pio.adapter) route_[name][p.config.name] = {pio.adapter.get(), pio.inputs->polled() ? pio.inputs.get() : nullptr};
     if (!p.config.sensor.empty())
       ROS_INFO("car: %s: sensor '%s' (%s, %s) on %s at %g Hz: %s", name.c_str(), p.config.sensor.c_str(),
                p.config.sensor_type.c_str(), p.config.filename.c_str(), p.link.c_str(), p.rate, offers.c_str());

@@ -55,6 +55,7 @@ class Tricycle : public Plugin, public TwistDrive {
     speed_ = cmd.linear.x();
     angle_ = cmd.angular.z();
   }
+  void command(const std::string&, const Command& value, CommandResult*) override { set_twist(std::get<Twist>(value)); }
 
   void reset() override {
     speed_ = angle_ = wheel_target_ = steer_rate_ = 0.0;
@@ -180,6 +181,8 @@ const PluginKind& tricycle_drive_kind() {
     k.ignored = {{"alwaysOn", ""}, {"rosDebugLevel", ""}, {"publishTf", ""}};
     k.output_group = "odometry";
     k.finish = finish;
+    // angular.z is the steering angle [rad]
+    k.inputs = topic_input("cmd_vel", InputType::Twist, "commandTopic", 1, kLinearX | kAngularZ);
     k.make = [](const PluginConfig& c, const std::string&, uint64_t) -> std::unique_ptr<Plugin> {
       return std::make_unique<Tricycle>(c);
     };

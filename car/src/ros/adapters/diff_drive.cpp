@@ -1,11 +1,8 @@
-// libgazebo_ros_diff_drive.so on ROS: cmd_vel in, odom + TF odom -> base out, wheel joint states and wheel TF
+// libgazebo_ros_diff_drive.so on ROS (cmd_vel comes in through the kind's input port, inputs.cpp): odom + TF odom -> base out, wheel joint states and wheel TF
 // when asked; rosDebugLevel sets the node's logger level, as upstream.
-#include <geometry_msgs/Twist.h>
 #include <nav_msgs/Odometry.h>
 #include <sensor_msgs/JointState.h>
 
-#include <chrono>
-#include <cmath>
 #include <map>
 
 #include "../adapter.hpp"
@@ -20,17 +17,13 @@ class DiffDriveAdapter : public Adapter {
  public:
   std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
     cfg_ = car_sim::DiffDriveConfig::from(p.config, robot.name);
-    robot_ = robot.name;
     model_ = &robot.model;
-    drive_ = dynamic_cast<car_sim::TwistDrive*>(node.world().plugin(robot.name, p.config.name));
     // GazeboRos::resolveTF: tf_prefix from the plug-in's namespace (docs/COMPAT-spawn.md rule 4)
     prefix_ = tf_prefix_param(car_sim::plugin_robot_namespace(p.config, robot.name));
     odom_frame_ = resolve_tf(prefix_, cfg_.odometry_frame);
     base_frame_ = resolve_tf(prefix_, cfg_.robot_base_frame);
     const std::string cmd = topic_in(cfg_.robot_namespace, cfg_.command_topic);
     const std::string odom = topic_in(cfg_.robot_namespace, cfg_.odometry_topic);
-    cmd_vel_ = node.nh().subscribe<geometry_msgs::Twist>(
-        cmd, 10, [this](const geometry_msgs::Twist::ConstPtr& m) { on_cmd_vel(*m); });
     if (cfg_.publish_tf)
       odom_ = node.nh().advertise<nav_msgs::Odometry>(odom, 100);
     else
@@ -101,23 +94,6 @@ class DiffDriveAdapter : public Adapter {
   }
 
  private:
-  void on_cmd_vel(const geometry_msgs::Twist& m) {
-    if (!std::isfinite(m.linear.x) || !std::isfinite(m.angular.z)) {
-      // throttled in wall time: sim time stands still while paused and restarts at 0 after a reset
-      const auto now = std::chrono::steady_clock::now();
-      if (last_nan_warning_.time_since_epoch().count() == 0 || now - last_nan_warning_ > std::chrono::seconds(1)) {
-        ROS_WARN("car: %s: rejected a cmd_vel with a non-finite value (linear.x %g, angular.z %g)", robot_.c_str(),
-                 m.linear.x, m.angular.z);
-        last_nan_warning_ = now;
-      }
-      return;
-    }
-    car_sim::Twist t;
-    t.linear.x() = m.linear.x;
-    t.angular.z() = m.angular.z;
-    if (drive_) drive_->set_twist(t);
-  }
-
   // rosDebugLevel (Debug, Info, Warn, Error, Fatal; "na" leaves it) sets this node's logger level, as upstream.
   void set_debug_level() {
     static const std::map<std::string, ros::console::levels::Level> levels = {
@@ -132,14 +108,10 @@ class DiffDriveAdapter : public Adapter {
   }
 
   car_sim::DiffDriveConfig cfg_;
-  std::string robot_;
   std::string odom_frame_, base_frame_;  // the odometry's frame_id and child_frame_id, as published
   std::string prefix_;                   // tf_prefix ("" = none)
   const car_sim::RobotModel* model_ = nullptr;
-  car_sim::TwistDrive* drive_ = nullptr;
-  ros::Subscriber cmd_vel_;
   ros::Publisher odom_, wheel_joint_states_;
-  std::chrono::steady_clock::time_point last_nan_warning_;
 };
 
 }  // namespace

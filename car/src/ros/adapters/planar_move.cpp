@@ -1,10 +1,6 @@
-// libgazebo_ros_planar_move.so on ROS: cmd_vel (x, y, yaw rate) in, odometry + TF odometryFrame -> robotBaseFrame
+// libgazebo_ros_planar_move.so on ROS (cmd_vel, x, y and yaw rate, through the kind's input port): odometry + TF odometryFrame -> robotBaseFrame
 // out at odometryRate, under robotNamespace ("" = global, as upstream's NodeHandle("")).
-#include <geometry_msgs/Twist.h>
 #include <nav_msgs/Odometry.h>
-
-#include <chrono>
-#include <cmath>
 
 #include "../adapter.hpp"
 #include "../conversions.hpp"
@@ -17,8 +13,6 @@ namespace {
 class PlanarMoveAdapter : public Adapter {
  public:
   std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
-    robot_ = robot.name;
-    drive_ = dynamic_cast<car_sim::TwistDrive*>(node.world().plugin(robot.name, p.config.name));
     const std::string ns = car_sim::plugin_robot_namespace(p.config, robot.name);
     // tf::resolve(tf::getPrefixParam) as upstream: tf_prefix from the plug-in's namespace (docs/COMPAT-spawn.md 4)
     const std::string prefix = tf_prefix_param(ns);
@@ -26,8 +20,6 @@ class PlanarMoveAdapter : public Adapter {
     base_frame_ = resolve_tf(prefix, p.config.text("robotBaseFrame"));
     const std::string cmd = topic_in(ns, p.config.text("commandTopic"));
     const std::string odom = topic_in(ns, p.config.text("odometryTopic"));
-    cmd_vel_ = node.nh().subscribe<geometry_msgs::Twist>(
-        cmd, 1, [this](const geometry_msgs::Twist::ConstPtr& m) { on_cmd_vel(*m); });
     odom_ = node.nh().advertise<nav_msgs::Odometry>(odom, 1);
     return "command " + cmd + ", odometry " + odom + " (" + odom_frame_ + " -> " + base_frame_ + ") at " +
            p.config.text("odometryRate") + " Hz, cmdTimeout " + p.config.text("cmdTimeout") + " s";
@@ -52,27 +44,8 @@ class PlanarMoveAdapter : public Adapter {
   }
 
  private:
-  void on_cmd_vel(const geometry_msgs::Twist& m) {
-    if (!std::isfinite(m.linear.x) || !std::isfinite(m.linear.y) || !std::isfinite(m.angular.z)) {
-      // throttled in wall time: sim time stands still while paused
-      const auto now = std::chrono::steady_clock::now();
-      if (last_warning_.time_since_epoch().count() == 0 || now - last_warning_ > std::chrono::seconds(1)) {
-        ROS_WARN("car: %s: rejected a cmd_vel with a non-finite value", robot_.c_str());
-        last_warning_ = now;
-      }
-      return;
-    }
-    car_sim::Twist t;
-    t.linear = Eigen::Vector3d(m.linear.x, m.linear.y, 0.0);
-    t.angular.z() = m.angular.z;
-    if (drive_) drive_->set_twist(t);
-  }
-
-  std::string robot_, odom_frame_, base_frame_;
-  car_sim::TwistDrive* drive_ = nullptr;
-  ros::Subscriber cmd_vel_;
+  std::string odom_frame_, base_frame_;
   ros::Publisher odom_;
-  std::chrono::steady_clock::time_point last_warning_;
 };
 
 }  // namespace

@@ -14,12 +14,10 @@ std::unique_ptr<Adapter> make_p3d_adapter();
 std::unique_ptr<Adapter> make_planar_move_adapter();
 std::unique_ptr<Adapter> make_skid_steer_drive_adapter();
 std::unique_ptr<Adapter> make_joint_state_publisher_adapter();
-std::unique_ptr<Adapter> make_force_adapter();
 std::unique_ptr<Adapter> make_f3d_adapter();
 std::unique_ptr<Adapter> make_bumper_adapter();
 std::unique_ptr<Adapter> make_ft_sensor_adapter();
 std::unique_ptr<Adapter> make_hand_of_god_adapter();
-std::unique_ptr<Adapter> make_joint_pose_trajectory_adapter();
 std::unique_ptr<Adapter> make_tricycle_drive_adapter();
 std::unique_ptr<Adapter> make_range_adapter();
 std::unique_ptr<Adapter> make_block_laser_adapter();
@@ -44,12 +42,10 @@ const AdapterKind kAdapters[] = {
     {"planar_move", make_planar_move_adapter},
     {"skid_steer_drive", make_skid_steer_drive_adapter},
     {"joint_state_publisher", make_joint_state_publisher_adapter},
-    {"force", make_force_adapter},
     {"f3d", make_f3d_adapter},
     {"bumper", make_bumper_adapter},
     {"ft_sensor", make_ft_sensor_adapter},
     {"hand_of_god", make_hand_of_god_adapter},
-    {"joint_pose_trajectory", make_joint_pose_trajectory_adapter},
     {"tricycle_drive", make_tricycle_drive_adapter},
     {"range", make_range_adapter},
     {"block_laser", make_block_laser_adapter},

@@ -1,10 +1,6 @@
-// libgazebo_ros_skid_steer_drive.so on ROS: cmd_vel (linear.x, angular.z) in; odometry out at updateRate with
+// libgazebo_ros_skid_steer_drive.so on ROS (cmd_vel, linear.x and angular.z, through the kind's input port): odometry out at updateRate with
 // covariance_x/_y/_yaw on pose and twist; TF odometryFrame -> robotBaseFrame only with broadcastTF.
-#include <geometry_msgs/Twist.h>
 #include <nav_msgs/Odometry.h>
-
-#include <chrono>
-#include <cmath>
 
 #include "../adapter.hpp"
 #include "../conversions.hpp"
@@ -17,8 +13,6 @@ namespace {
 class SkidSteerAdapter : public Adapter {
  public:
   std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
-    robot_ = robot.name;
-    drive_ = dynamic_cast<car_sim::TwistDrive*>(node.world().plugin(robot.name, p.config.name));
     const std::string ns = car_sim::plugin_robot_namespace(p.config, robot.name);
     // tf::resolve(tf::getPrefixParam) as upstream: tf_prefix from the plug-in's namespace (docs/COMPAT-spawn.md 4)
     const std::string prefix = tf_prefix_param(ns);
@@ -31,8 +25,6 @@ class SkidSteerAdapter : public Adapter {
     cov_[5] = p.config.number("covariance_yaw");
     const std::string cmd = topic_in(ns, p.config.text("commandTopic"));
     const std::string odom = topic_in(ns, p.config.text("odometryTopic"));
-    cmd_vel_ = node.nh().subscribe<geometry_msgs::Twist>(
-        cmd, 1, [this](const geometry_msgs::Twist::ConstPtr& m) { on_cmd_vel(*m); });
     odom_ = node.nh().advertise<nav_msgs::Odometry>(odom, 1);
     return "command " + cmd + ", odometry " + odom + " (" + odom_frame_ + " -> " + base_frame_ + ") at " +
            p.config.text("updateRate") + " Hz, separation " + p.config.text("wheelSeparation") + " m, diameter " +
@@ -60,28 +52,10 @@ class SkidSteerAdapter : public Adapter {
   }
 
  private:
-  void on_cmd_vel(const geometry_msgs::Twist& m) {
-    if (!std::isfinite(m.linear.x) || !std::isfinite(m.angular.z)) {
-      const auto now = std::chrono::steady_clock::now();
-      if (last_warning_.time_since_epoch().count() == 0 || now - last_warning_ > std::chrono::seconds(1)) {
-        ROS_WARN("car: %s: rejected a cmd_vel with a non-finite value", robot_.c_str());
-        last_warning_ = now;
-      }
-      return;
-    }
-    car_sim::Twist t;
-    t.linear.x() = m.linear.x;
-    t.angular.z() = m.angular.z;
-    if (drive_) drive_->set_twist(t);
-  }
-
-  std::string robot_, odom_frame_, base_frame_;
+  std::string odom_frame_, base_frame_;
   bool broadcast_tf_ = false;
   double cov_[6] = {0, 0, 0, 0, 0, 0};
-  car_sim::TwistDrive* drive_ = nullptr;
-  ros::Subscriber cmd_vel_;
   ros::Publisher odom_;
-  std::chrono::steady_clock::time_point last_warning_;
 };
 
 }  // namespace

@@ -1,11 +1,9 @@
-// libgazebo_ros_tricycle_drive.so on ROS: cmd_vel in (linear.x speed, angular.z steering angle), odometry and TF
+// libgazebo_ros_tricycle_drive.so on ROS (cmd_vel, linear.x speed and angular.z steering angle, through the kind's
+// input port): odometry and TF
 // odometryFrame -> robotBaseFrame out at updateRate; wheel joint states and wheel TF when asked. robotNamespace
 // absent or empty means the model's name (upstream's GazeboRos helper).
-#include <geometry_msgs/Twist.h>
 #include <nav_msgs/Odometry.h>
 #include <sensor_msgs/JointState.h>
-
-#include <cmath>
 
 #include "../adapter.hpp"
 #include "../conversions.hpp"
@@ -18,9 +16,7 @@ namespace {
 class TricycleAdapter : public Adapter {
  public:
   std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
-    drive_ = dynamic_cast<car_sim::TwistDrive*>(node.world().plugin(robot.name, p.config.name));
     model_ = &robot.model;
-    name_ = p.config.name;
     const std::string ns = car_sim::plugin_robot_namespace(p.config, robot.name);
     // tf::resolve(tf::getPrefixParam) as upstream: tf_prefix from the plug-in's namespace (docs/COMPAT-spawn.md 4)
     prefix_ = tf_prefix_param(ns);
@@ -29,16 +25,6 @@ class TricycleAdapter : public Adapter {
     wheel_tf_ = p.config.flag("publishWheelTF");
     const std::string cmd = topic_in(ns, p.config.text("commandTopic"));
     const std::string odom = topic_in(ns, p.config.text("odometryTopic"));
-    cmd_vel_ = node.nh().subscribe<geometry_msgs::Twist>(cmd, 1, [this](const geometry_msgs::Twist::ConstPtr& m) {
-      if (!std::isfinite(m->linear.x) || !std::isfinite(m->angular.z)) {
-        ROS_WARN_THROTTLE(1.0, "car: %s: rejected a cmd_vel with a non-finite value", name_.c_str());
-        return;
-      }
-      car_sim::Twist t;
-      t.linear.x() = m->linear.x;
-      t.angular.z() = m->angular.z;
-      if (drive_) drive_->set_twist(t);
-    });
     odom_ = node.nh().advertise<nav_msgs::Odometry>(odom, 1);
     if (p.config.flag("publishWheelJointState"))
       joint_states_ = node.nh().advertise<sensor_msgs::JointState>(topic_in(ns, "joint_states"), 1000);
@@ -90,12 +76,10 @@ class TricycleAdapter : public Adapter {
   }
 
  private:
-  car_sim::TwistDrive* drive_ = nullptr;
   const car_sim::RobotModel* model_ = nullptr;
-  std::string name_, odom_frame_, base_frame_;
+  std::string odom_frame_, base_frame_;
   std::string prefix_;  // tf_prefix ("" = none)
   bool wheel_tf_ = false;
-  ros::Subscriber cmd_vel_;
   ros::Publisher odom_, joint_states_;
 };
 
