@@ -195,6 +195,10 @@ class ResolveContext {
 struct PluginKind {
   std::string name;                         // registry name, e.g. "diff_drive"
   std::vector<std::string> filenames;       // Gazebo plug-in file names it serves
+  // How its files read <robotNamespace>, as their upstream Load does (docs/COMPAT-plugins.md "Namespaces"), and
+  // the files of the kind that read it otherwise.
+  NamespaceRule namespace_rule = NamespaceRule::AsWritten;
+  std::map<std::string, NamespaceRule> file_namespace_rules;
   bool model_level = true;                  // may stand in a robot-level <gazebo><plugin>
   std::vector<std::string> sensor_types;    // <sensor type>s it may sit in; empty: not a sensor plug-in
   std::vector<ParamDef> sensor_schema;      // keys of its <sensor> (flattened paths, update_rate included)

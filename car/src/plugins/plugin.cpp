@@ -175,6 +175,29 @@ void OdometryOut::visit(FieldVisitor& v) const {
 
 namespace car_sim {
 
+bool namespace_rule(const std::string& filename, NamespaceRule* rule) {
+  const PluginKind* k = plugin_kind_for_file(filename);
+  *rule = NamespaceRule::AsWritten;
+  if (!k) return false;
+  const auto it = k->file_namespace_rules.find(filename);
+  *rule = it == k->file_namespace_rules.end() ? k->namespace_rule : it->second;
+  return true;
+}
+
+std::string plugin_robot_namespace(const PluginConfig& c, const std::string& model_name) {
+  NamespaceRule rule;
+  namespace_rule(c.filename, &rule);
+  const bool present = c.has("robotNamespace") && !c.param("robotNamespace").from_default;
+  std::string ns = present ? c.text("robotNamespace") : "";
+  const bool to_model = present ? ns.empty() && (rule == NamespaceRule::ModelName || rule == NamespaceRule::EmptyIsModel)
+                                : (rule == NamespaceRule::ModelName || rule == NamespaceRule::AbsentIsModel);
+  if (to_model) ns = model_name;
+  // "/" and "" are the global namespace; "r1/" is what NodeHandle("r1" + "/") names
+  while (!ns.empty() && ns.front() == '/') ns.erase(ns.begin());
+  while (!ns.empty() && ns.back() == '/') ns.pop_back();
+  return ns;
+}
+
 std::string resolve_topic(const std::string& ns, const std::string& topic) {
   if (!topic.empty() && topic[0] == '/') return topic;
   return ns.empty() ? "/" + topic : "/" + ns + "/" + topic;

@@ -197,6 +197,7 @@ const PluginKind& diff_drive_kind() {
     PluginKind k;
     k.name = "diff_drive";
     k.filenames = {"libgazebo_ros_diff_drive.so"};
+    k.namespace_rule = NamespaceRule::ModelName;  // GazeboRos (gazebo_ros_diff_drive.cpp)
     k.schema = {
         {"robotNamespace", T, "", ""},
         {"commandTopic", T, "cmd_vel", ""},

@@ -78,6 +78,7 @@ const PluginKind& joint_state_publisher_kind() {
     PluginKind k;
     k.name = "joint_state_publisher";
     k.filenames = {"libgazebo_ros_joint_state_publisher.so"};
+    k.namespace_rule = NamespaceRule::ModelName;  // GazeboRos (gazebo_ros_joint_state_publisher.cpp)
     k.schema = {
         {"robotNamespace", T, "", ""},
         {"jointName", T, "", ""},

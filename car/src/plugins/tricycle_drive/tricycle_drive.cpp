@@ -154,6 +154,7 @@ const PluginKind& tricycle_drive_kind() {
     PluginKind k;
     k.name = "tricycle_drive";
     k.filenames = {"libgazebo_ros_tricycle_drive.so"};
+    k.namespace_rule = NamespaceRule::ModelName;  // GazeboRos (gazebo_ros_tricycle_drive.cpp)
     k.schema = {
         {"robotNamespace", T, "", ""},
         {"actuatedWheelDiameter", N, "0.15", "m"},

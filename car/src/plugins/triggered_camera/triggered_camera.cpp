@@ -37,6 +37,7 @@ const PluginKind& triggered_camera_kind() {
     PluginKind k = camera_kind();
     k.name = "triggered_camera";
     k.filenames = {"libgazebo_ros_triggered_camera.so"};
+    k.namespace_rule = NamespaceRule::EmptyIsModel;  // GetRobotNamespace (gazebo_ros_camera_utils.cpp)
     k.schema.push_back({"triggerTopicName", ParamType::Text, "image_trigger", ""});
     // not lazy: a trigger is used up even while nobody listens, as upstream's OnNewFrame does
     k.lazy = false;
