@@ -210,6 +210,8 @@ struct PluginKind {
   std::function<void(ResolveContext&)> finish;
   // Its input ports for a resolved configuration on a robot, topics resolved (none: no inputs).
   std::function<std::vector<InputPort>(const PluginConfig& config, const std::string& robot)> inputs;
+  // Its output ports for a resolved configuration on a robot (none: its outputs have a ROS adapter instead).
+  std::function<std::vector<OutputPort>(const PluginConfig& config, const std::string& robot)> outputs;
   // An instance for a resolved configuration. seed: the world's noise seed.
   std::function<std::unique_ptr<Plugin>(const PluginConfig& config, const std::string& robot, uint64_t seed)> make;
 };

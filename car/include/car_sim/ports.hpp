@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cstdint>
 #include <string>
 #include <variant>
@@ -75,6 +76,30 @@ struct CommandResult {
     std::string text;
   };
   std::vector<Note> notes;
+};
+
+// ---- output ports -----------------------------------------------------------------------------------------
+
+// The sample families of outputs with a port (more kinds move onto ports one family at a time). The Odometry
+// family reads a drive's OdometryOut: its pose and twist (Odometry), its wheel joints (JointStates), and the wheel
+// links' frames relative to their parents from those joints (JointTransforms, TF only).
+enum class SampleType { Odometry, JointStates, JointTransforms };
+
+// Whether a sample's transform also goes out on TF, before or after its message (as each upstream file orders it).
+enum class TfOrder { None, Before, After };
+
+// An output of one plug-in instance, resolved.
+struct OutputPort {
+  std::string name;            // the kind's name for it, e.g. "odom"
+  SampleType type = SampleType::Odometry;
+  std::string topic;           // absolute; "" = no message (an Odometry port may still send its TF)
+  uint32_t queue = 1;          // the publisher's queue length, as upstream
+  std::string ns;              // the plug-in's namespace: where a ROS skin looks tf_prefix up (gazebo_ros resolveTF)
+  std::string frame;           // header.frame_id as written (a ROS skin prefixes it with tf_prefix)
+  std::string child_frame;     // child_frame_id as written
+  TfOrder tf = TfOrder::None;  // Odometry: also the transform frame -> child_frame
+  std::array<double, 6> pose_covariance{};   // the diagonal (x, y, z, roll, pitch, yaw)
+  std::array<double, 6> twist_covariance{};
 };
 
 // A topic of a plug-in: an absolute name stays, another goes under the namespace ("" = global).

@@ -34,7 +34,8 @@ struct PluginInfo {
   std::string link;             // the link it is on or measures ("" for the whole model)
   double rate = 0.0;            // [Hz], 0 = every step
   bool lazy = false;            // computed only while active (someone listens)
-  std::vector<InputPort> inputs;  // its input ports, topics resolved (the kind's `inputs`)
+  std::vector<InputPort> inputs;    // its input ports, topics resolved (the kind's `inputs`)
+  std::vector<OutputPort> outputs;  // its output ports, topics and frames resolved (the kind's `outputs`)
 };
 
 // What a spawned robot is, for the skins: its model, resolved plug-ins and namespace.

@@ -198,6 +198,39 @@ std::string plugin_robot_namespace(const PluginConfig& c, const std::string& mod
   return ns;
 }
 
+OutputPort odometry_port(const PluginConfig& c, const std::string& robot, const std::string& topic_key, uint32_t queue,
+                         TfOrder tf, double cov_x, double cov_y, double cov_yaw) {
+  OutputPort p;
+  p.name = "odom";
+  p.type = SampleType::Odometry;
+  p.ns = plugin_robot_namespace(c, robot);
+  p.topic = resolve_topic(p.ns, c.text(topic_key));
+  p.queue = queue;
+  p.frame = c.text("odometryFrame");
+  p.child_frame = c.text("robotBaseFrame");
+  p.tf = tf;
+  p.pose_covariance = {cov_x, cov_y, 1e12, 1e12, 1e12, cov_yaw};
+  return p;
+}
+
+OutputPort wheel_joint_states_port(const PluginConfig& c, const std::string& robot, uint32_t queue) {
+  OutputPort p;
+  p.name = "joint_states";
+  p.type = SampleType::JointStates;
+  p.ns = plugin_robot_namespace(c, robot);
+  p.topic = resolve_topic(p.ns, "joint_states");
+  p.queue = queue;
+  return p;
+}
+
+OutputPort wheel_tf_port(const PluginConfig& c, const std::string& robot) {
+  OutputPort p;
+  p.name = "wheel_tf";
+  p.type = SampleType::JointTransforms;
+  p.ns = plugin_robot_namespace(c, robot);
+  return p;
+}
+
 std::string resolve_topic(const std::string& ns, const std::string& topic) {
   if (!topic.empty() && topic[0] == '/') return topic;
   return ns.empty() ? "/" + topic : "/" + ns + "/" + topic;

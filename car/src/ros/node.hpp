@@ -36,6 +36,7 @@
 
 #include "adapter.hpp"
 #include "inputs.hpp"
+#include "outputs.hpp"
 #include "lockstep.hpp"
 #include "pacer.hpp"
 #include "publish_queue.hpp"
@@ -78,6 +79,7 @@ class SimNode : public NodeContext {
     car_sim::PluginInfo info;
     std::unique_ptr<Adapter> adapter;
     std::unique_ptr<InputPorts> inputs;
+    std::unique_ptr<OutputPorts> outputs;  // a kind whose outputs have ports (it has no adapter)
     bool active = false;
     uint32_t parts = ~0u;  // the output parts last handed to the plug-in (Plugin::set_parts)
   };
@@ -148,6 +150,7 @@ class SimNode : public NodeContext {
   // the output's own strings: no copy per output)
   struct Route {
     Adapter* adapter = nullptr;
+    OutputPorts* outputs = nullptr;
     InputPorts* polled = nullptr;
   };
   std::map<std::string, std::map<std::string, Route>> route_;

@@ -221,6 +221,15 @@ const PluginKind& diff_drive_kind() {
     k.ignored = {{"legacyMode", ""}, {"broadcastTF", ""}, {"alwaysOn", ""}};
     k.output_group = "odometry";
     k.inputs = topic_input("cmd_vel", InputType::Twist, "commandTopic", 10, kLinearX | kAngularZ);
+    // odom (queue 100; none at all with publishTf false, as upstream) and its TF after it; the wheels on request
+    k.outputs = [](const PluginConfig& c, const std::string& robot) {
+      std::vector<OutputPort> ports = {
+          odometry_port(c, robot, "odometryTopic", 100, c.flag("publishOdomTF") ? TfOrder::After : TfOrder::None)};
+      if (!c.flag("publishTf")) ports[0].topic.clear();
+      if (c.flag("publishWheelJointState")) ports.push_back(wheel_joint_states_port(c, robot, 10));
+      if (c.flag("publishWheelTF")) ports.push_back(wheel_tf_port(c, robot));
+      return ports;
+    };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t) -> std::unique_ptr<Plugin> {
       return std::make_unique<DiffDrive>(c, robot);
