@@ -25,14 +25,18 @@ struct OdometryOut : Output {
   Eigen::Vector3d angular = Eigen::Vector3d::Zero();       // [rad/s], base frame
   std::vector<JointState> joints;                          // the driven wheel joints at that time
   void visit(FieldVisitor& v) const override;
+  bool odometry_sample(OdometrySample* s) const override {
+    *s = {pose, linear, angular};
+    return true;
+  }
+  const std::vector<JointState>* joint_states_sample() const override { return &joints; }
 };
 
 // A drive's odometry port: frames from the schema keys odometryFrame and robotBaseFrame, under the plug-in's
 // namespace; pose covariance (x, y, 1e12, 1e12, 1e12, yaw) as the gazebo_ros drives write it.
 OutputPort odometry_port(const PluginConfig& c, const std::string& robot, const std::string& topic_key, uint32_t queue,
                          TfOrder tf, double cov_x = 1e-5, double cov_y = 1e-5, double cov_yaw = 1e-3);
-// The wheel ports a drive may add: sensor_msgs/JointState on <namespace>/joint_states, and the wheel TF.
-OutputPort wheel_joint_states_port(const PluginConfig& c, const std::string& robot, uint32_t queue);
+// The wheel TF a drive may add (its wheel joint states: joint_states_port, plugin.hpp).
 OutputPort wheel_tf_port(const PluginConfig& c, const std::string& robot);
 
 }  // namespace car_sim

@@ -42,6 +42,9 @@ struct Output {
   std::string robot, plugin;  // stamped by the world
   uint64_t tick = 0;          // stamped by the world
   virtual void visit(FieldVisitor& v) const = 0;
+  // Its samples for the output ports' converters (include/car_sim/ports.hpp): false / nullptr when it has none.
+  virtual bool odometry_sample(OdometrySample* s) const { return false; }
+  virtual const std::vector<JointState>* joint_states_sample() const { return nullptr; }
 };
 using OutputPtr = std::unique_ptr<Output>;
 using OutputQueue = std::vector<OutputPtr>;
@@ -220,6 +223,9 @@ struct PluginKind {
 // namespace (plugin_robot_namespace); the port has no topic while the key is empty.
 std::function<std::vector<InputPort>(const PluginConfig&, const std::string&)> topic_input(
     const std::string& port, InputType type, const std::string& topic_key, uint32_t queue, uint32_t axes = kAllAxes);
+
+// An output port of joint states on <the plug-in's namespace>/joint_states.
+OutputPort joint_states_port(const PluginConfig& c, const std::string& robot, uint32_t queue);
 
 // Every registered kind, in registration order.
 const std::vector<const PluginKind*>& plugin_kinds();

@@ -80,10 +80,18 @@ struct CommandResult {
 
 // ---- output ports -----------------------------------------------------------------------------------------
 
-// The sample families of outputs with a port (more kinds move onto ports one family at a time). The Odometry
-// family reads a drive's OdometryOut: its pose and twist (Odometry), its wheel joints (JointStates), and the wheel
-// links' frames relative to their parents from those joints (JointTransforms, TF only).
+// The sample families of outputs with a port (more kinds move onto ports one family at a time): a pose and twist
+// (Odometry), joint states (JointStates), and the child links' frames relative to their parents from those joints
+// (JointTransforms, TF only). An output hands its samples over through Output::odometry_sample and
+// Output::joint_states_sample.
 enum class SampleType { Odometry, JointStates, JointTransforms };
+
+// A pose with a twist: a frame in its parent frame, and the velocity of its origin.
+struct OdometrySample {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d linear = Eigen::Vector3d::Zero();   // [m/s]
+  Eigen::Vector3d angular = Eigen::Vector3d::Zero();  // [rad/s]
+};
 
 // Whether a sample's transform also goes out on TF, before or after its message (as each upstream file orders it).
 enum class TfOrder { None, Before, After };
@@ -97,6 +105,8 @@ struct OutputPort {
   std::string ns;              // the plug-in's namespace: where a ROS skin looks tf_prefix up (gazebo_ros resolveTF)
   std::string frame;           // header.frame_id as written (a ROS skin prefixes it with tf_prefix)
   std::string child_frame;     // child_frame_id as written
+  // false: no tf_prefix; the frame only loses its leading '/'s and the child frame stays as written (p3d)
+  bool tf_prefix = true;
   TfOrder tf = TfOrder::None;  // Odometry: also the transform frame -> child_frame
   std::array<double, 6> pose_covariance{};   // the diagonal (x, y, z, roll, pitch, yaw)
   std::array<double, 6> twist_covariance{};

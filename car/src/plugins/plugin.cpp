@@ -213,7 +213,7 @@ OutputPort odometry_port(const PluginConfig& c, const std::string& robot, const 
   return p;
 }
 
-OutputPort wheel_joint_states_port(const PluginConfig& c, const std::string& robot, uint32_t queue) {
+OutputPort joint_states_port(const PluginConfig& c, const std::string& robot, uint32_t queue) {
   OutputPort p;
   p.name = "joint_states";
   p.type = SampleType::JointStates;

@@ -7,7 +7,6 @@
 #include <cctype>
 #include <map>
 
-#include "car_sim/drive.hpp"
 #include "conversions.hpp"
 
 namespace car_ros {
@@ -40,9 +39,14 @@ std::string OutputPorts::setup(const car_sim::PluginInfo& plugin, const car_sim:
     Port p;
     p.port = op;
     // GazeboRos::resolveTF: tf_prefix from the plug-in's namespace (docs/COMPAT-spawn.md rule 4)
-    p.prefix = tf_prefix_param(op.ns);
-    p.frame = resolve_tf(p.prefix, op.frame);
-    p.child_frame = resolve_tf(p.prefix, op.child_frame);
+    if (op.tf_prefix) {
+      p.prefix = tf_prefix_param(op.ns);
+      p.frame = resolve_tf(p.prefix, op.frame);
+      p.child_frame = resolve_tf(p.prefix, op.child_frame);
+    } else {
+      p.frame = frame(op.frame);
+      p.child_frame = op.child_frame;
+    }
     switch (op.type) {
       case T::Odometry:
         if (!op.topic.empty()) p.pub = node.nh().advertise<nav_msgs::Odometry>(op.topic, op.queue);
@@ -71,13 +75,17 @@ bool OutputPorts::listened() const {
 }
 
 void OutputPorts::publish(const car_sim::Output& out, NodeContext& node) {
-  // the Odometry family's ports all read a drive's OdometryOut (include/car_sim/ports.hpp)
-  const auto& o = static_cast<const car_sim::OdometryOut&>(out);
-  const ros::Time stamp = node.stamp(o.tick);
+  const ros::Time stamp = node.stamp(out.tick);
+  car_sim::OdometrySample o;
+  const bool has_odometry = out.odometry_sample(&o);
+  static const std::vector<car_sim::JointState> kNone;
+  const std::vector<car_sim::JointState>* sample = out.joint_states_sample();
+  const std::vector<car_sim::JointState>& joints = sample ? *sample : kNone;
   using T = car_sim::SampleType;
   for (const Port& p : ports_) {
     switch (p.port.type) {
       case T::Odometry: {
+        if (!has_odometry) break;
         nav_msgs::Odometry m;
         m.header.stamp = stamp;
         m.header.frame_id = p.frame;
@@ -101,12 +109,13 @@ void OutputPorts::publish(const car_sim::Output& out, NodeContext& node) {
         break;
       }
       case T::JointStates: {
+        if (!sample) break;
         sensor_msgs::JointState js;
         js.header.stamp = stamp;
-        js.name.reserve(o.joints.size());
-        js.position.reserve(o.joints.size());
-        js.velocity.reserve(o.joints.size());
-        for (const auto& j : o.joints) {
+        js.name.reserve(joints.size());
+        js.position.reserve(joints.size());
+        js.velocity.reserve(joints.size());
+        for (const auto& j : joints) {
           js.name.push_back(j.name);
           js.position.push_back(j.position);
           js.velocity.push_back(j.velocity);
@@ -117,7 +126,7 @@ void OutputPorts::publish(const car_sim::Output& out, NodeContext& node) {
       case T::JointTransforms:
         // fix: each child link relative to its parent link (upstream drives publish the wheels relative to the
         // odometry frame, or name the child frame after the joint)
-        for (const auto& j : o.joints) {
+        for (const auto& j : joints) {
           const car_sim::Joint* joint = model_->find_joint(j.name);
           geometry_msgs::TransformStamped w;
           w.header.stamp = stamp;

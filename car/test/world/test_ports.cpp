@@ -50,3 +50,31 @@ TEST(WorldPorts, DiffDriveWheelJointStatesTopic) {
   EXPECT_EQ(p.topic, "/joint_states");
   EXPECT_EQ(p.queue, 10u);
 }
+
+// p3d, as the ROS node attaches it for ground truth: its frames untouched by tf_prefix, gaussianNoise 0.1 m giving
+// the variance 0.01 on every diagonal entry of pose and twist, queue 100
+TEST(WorldPorts, P3dOdometryPort) {
+  auto w = world_with_car(false);
+  PluginSpec truth;
+  truth.name = "truth";
+  truth.filename = "libgazebo_ros_p3d.so";
+  truth.params = {{"bodyName", "base_footprint"}, {"topicName", "/gazebo/ground_truth/mycar"}, {"frameName", "world"},
+                  {"gaussianNoise", "0.1"}};
+  w->attach_plugin("mycar", truth);
+  std::vector<OutputPort> ports;
+  for (const auto& p : w->plugins())
+    if (p.config.name == "truth") ports = p.outputs;
+  ASSERT_EQ(ports.size(), 1u);
+  const OutputPort& p = ports[0];
+  EXPECT_EQ(p.type, SampleType::Odometry);
+  EXPECT_EQ(p.topic, "/gazebo/ground_truth/mycar");
+  EXPECT_EQ(p.queue, 100u);
+  EXPECT_EQ(p.frame, "world");
+  EXPECT_EQ(p.child_frame, "base_footprint");
+  EXPECT_FALSE(p.tf_prefix);
+  EXPECT_EQ(p.tf, TfOrder::None);
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_NEAR(p.pose_covariance[i], 0.01, 1e-15);
+    EXPECT_NEAR(p.twist_covariance[i], 0.01, 1e-15);
+  }
+}

@@ -226,7 +226,7 @@ const PluginKind& diff_drive_kind() {
       std::vector<OutputPort> ports = {
           odometry_port(c, robot, "odometryTopic", 100, c.flag("publishOdomTF") ? TfOrder::After : TfOrder::None)};
       if (!c.flag("publishTf")) ports[0].topic.clear();
-      if (c.flag("publishWheelJointState")) ports.push_back(wheel_joint_states_port(c, robot, 10));
+      if (c.flag("publishWheelJointState")) ports.push_back(joint_states_port(c, robot, 10));
       if (c.flag("publishWheelTF")) ports.push_back(wheel_tf_port(c, robot));
       return ports;
     };

@@ -9,8 +9,6 @@ std::unique_ptr<Adapter> make_laser_adapter();
 std::unique_ptr<Adapter> make_camera_adapter();
 std::unique_ptr<Adapter> make_openni_kinect_adapter();
 std::unique_ptr<Adapter> make_imu_adapter();
-std::unique_ptr<Adapter> make_p3d_adapter();
-std::unique_ptr<Adapter> make_joint_state_publisher_adapter();
 std::unique_ptr<Adapter> make_f3d_adapter();
 std::unique_ptr<Adapter> make_bumper_adapter();
 std::unique_ptr<Adapter> make_ft_sensor_adapter();
@@ -33,8 +31,6 @@ const AdapterKind kAdapters[] = {
     {"camera", make_camera_adapter},
     {"openni_kinect", make_openni_kinect_adapter},
     {"imu", make_imu_adapter},
-    {"p3d", make_p3d_adapter},
-    {"joint_state_publisher", make_joint_state_publisher_adapter},
     {"f3d", make_f3d_adapter},
     {"bumper", make_bumper_adapter},
     {"ft_sensor", make_ft_sensor_adapter},
