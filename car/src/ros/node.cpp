@@ -1,5 +1,5 @@
-// The node's loop: pacing against the wall clock (rtf), /clock, the adapters' outputs, joint states and model
-// states, and which lazy plug-ins someone listens to.
+// The node's loop: pacing against the wall clock (rtf), /clock, the plug-ins' outputs (ports or adapters), joint
+// states and model states, and which lazy plug-ins someone listens to.
 #include "node.hpp"
 
 #include <ros/callback_queue.h>

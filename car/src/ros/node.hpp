@@ -1,6 +1,7 @@
 // car's simulator node: the ROS skin over car_sim::World. It paces the world against the wall clock (rtf),
-// publishes /clock, runs Gazebo-style services under /gazebo (services.cpp), and feeds every plug-in instance's
-// outputs to its kind's adapter (adapters/). All maths lives in the core.
+// publishes /clock, runs Gazebo-style services under /gazebo (services.cpp), subscribes every input port
+// (inputs.cpp), and feeds every plug-in instance's outputs to its output ports (outputs.cpp) or, for a kind not yet
+// on ports, to its kind's adapter (adapters/). All maths lives in the core.
 #pragma once
 
 #include <gazebo_msgs/DeleteModel.h>
