@@ -10,12 +10,6 @@
 
 namespace car_sim {
 
-// A body twist command: linear [m/s] and angular [rad/s], in the robot's base frame.
-struct Twist {
-  Eigen::Vector3d linear = Eigen::Vector3d::Zero();
-  Eigen::Vector3d angular = Eigen::Vector3d::Zero();
-};
-
 // A plug-in that drives the robot's base from a twist command (cmd_vel).
 class TwistDrive {
  public:
@@ -31,6 +25,18 @@ struct OdometryOut : Output {
   Eigen::Vector3d angular = Eigen::Vector3d::Zero();       // [rad/s], base frame
   std::vector<JointState> joints;                          // the driven wheel joints at that time
   void visit(FieldVisitor& v) const override;
+  bool odometry_sample(OdometrySample* s) const override {
+    *s = {pose, linear, angular};
+    return true;
+  }
+  const std::vector<JointState>* joint_states_sample() const override { return &joints; }
 };
+
+// A drive's odometry port: frames from the schema keys odometryFrame and robotBaseFrame, under the plug-in's
+// namespace; pose covariance (x, y, 1e12, 1e12, 1e12, yaw) as the gazebo_ros drives write it.
+OutputPort odometry_port(const PluginConfig& c, const std::string& robot, const std::string& topic_key, uint32_t queue,
+                         TfOrder tf, double cov_x = 1e-5, double cov_y = 1e-5, double cov_yaw = 1e-3);
+// The wheel TF a drive may add (its wheel joint states: joint_states_port, plugin.hpp).
+OutputPort wheel_tf_port(const PluginConfig& c, const std::string& robot);
 
 }  // namespace car_sim

@@ -14,6 +14,7 @@
 
 #include "car_sim/model.hpp"
 #include "car_sim/plugins.hpp"
+#include "car_sim/ports.hpp"
 #include "car_sim/raycast.hpp"
 #include "car_sim/state.hpp"
 
@@ -41,6 +42,9 @@ struct Output {
   std::string robot, plugin;  // stamped by the world
   uint64_t tick = 0;          // stamped by the world
   virtual void visit(FieldVisitor& v) const = 0;
+  // Its samples for the output ports' converters (include/car_sim/ports.hpp): false / nullptr when it has none.
+  virtual bool odometry_sample(OdometrySample* s) const { return false; }
+  virtual const std::vector<JointState>* joint_states_sample() const { return nullptr; }
 };
 using OutputPtr = std::unique_ptr<Output>;
 using OutputQueue = std::vector<OutputPtr>;
@@ -160,6 +164,9 @@ class Plugin {
   // default). A plug-in may leave the other parts out of the outputs it makes from then on; a kind without parts
   // ignores this.
   virtual void set_parts(uint32_t parts) {}
+  // A value for one of its input ports (World::command has checked that it fits the port and is finite); notes
+  // for the log go to *result. Between steps only.
+  virtual void command(const std::string& port, const Command& value, CommandResult* result) {}
 };
 
 // What the resolver hands a kind's finish(): the plug-in being resolved, its model and where to report.
@@ -191,6 +198,10 @@ class ResolveContext {
 struct PluginKind {
   std::string name;                         // registry name, e.g. "diff_drive"
   std::vector<std::string> filenames;       // Gazebo plug-in file names it serves
+  // How its files read <robotNamespace>, as their upstream Load does (docs/COMPAT-plugins.md "Namespaces"), and
+  // the files of the kind that read it otherwise.
+  NamespaceRule namespace_rule = NamespaceRule::AsWritten;
+  std::map<std::string, NamespaceRule> file_namespace_rules;
   bool model_level = true;                  // may stand in a robot-level <gazebo><plugin>
   std::vector<std::string> sensor_types;    // <sensor type>s it may sit in; empty: not a sensor plug-in
   std::vector<ParamDef> sensor_schema;      // keys of its <sensor> (flattened paths, update_rate included)
@@ -200,9 +211,21 @@ struct PluginKind {
   std::string output_group;                 // key of its outputs in Python's take_sensor_outputs(), e.g. "scans"
   // Checks resolved values against the model and fills derived defaults (ctx.fail for errors).
   std::function<void(ResolveContext&)> finish;
+  // Its input ports for a resolved configuration on a robot, topics resolved (none: no inputs).
+  std::function<std::vector<InputPort>(const PluginConfig& config, const std::string& robot)> inputs;
+  // Its output ports for a resolved configuration on a robot (none: its outputs have a ROS adapter instead).
+  std::function<std::vector<OutputPort>(const PluginConfig& config, const std::string& robot)> outputs;
   // An instance for a resolved configuration. seed: the world's noise seed.
   std::function<std::unique_ptr<Plugin>(const PluginConfig& config, const std::string& robot, uint64_t seed)> make;
 };
+
+// A kind's `inputs` for one port of `type` on the topic its schema key `topic_key` names, under the plug-in's
+// namespace (plugin_robot_namespace); the port has no topic while the key is empty.
+std::function<std::vector<InputPort>(const PluginConfig&, const std::string&)> topic_input(
+    const std::string& port, InputType type, const std::string& topic_key, uint32_t queue, uint32_t axes = kAllAxes);
+
+// An output port of joint states on <the plug-in's namespace>/joint_states.
+OutputPort joint_states_port(const PluginConfig& c, const std::string& robot, uint32_t queue);
 
 // Every registered kind, in registration order.
 const std::vector<const PluginKind*>& plugin_kinds();

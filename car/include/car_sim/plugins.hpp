@@ -74,15 +74,16 @@ const std::vector<ParamDef>& plugin_schema(const std::string& kind);
 // The kind for a plug-in file name ("libgazebo_ros_diff_drive.so" -> "diff_drive"), "" when unknown.
 std::string plugin_kind(const std::string& filename);
 
-// How a plug-in file reads <robotNamespace>, as its upstream Load does (table: docs/COMPAT-plugins.md
-// "Namespaces"). The spawn service's injection (apply_robot_namespace) comes first; this reads what it left.
+// How a plug-in file reads <robotNamespace>, as its upstream Load does (docs/COMPAT-plugins.md "Namespaces"): a
+// field of its kind (PluginKind::namespace_rule). The spawn service's injection (apply_robot_namespace) comes
+// first; this reads what it left.
 enum class NamespaceRule {
   AsWritten,      // HasElement ? value : "": absent or empty -> global
   ModelName,      // GazeboRos (model plug-ins): absent or empty -> the model's name
   EmptyIsModel,   // GetRobotNamespace (sensor plug-ins): absent -> global, empty -> the model's name
   AbsentIsModel,  // gazebo_ros_control, imu_sensor: absent -> the model's name, empty -> global
 };
-// The rule of a plug-in file; false (and AsWritten) for a file the table does not list.
+// The rule of a plug-in file, from its kind; false (and AsWritten) for a file no kind serves.
 bool namespace_rule(const std::string& filename, NamespaceRule* rule);
 // The namespace a plug-in's topics go under, by its file's rule: leading and trailing '/' removed, "" = global
 // ("/" is global whatever the rule; "r1", "/r1" and "/r1/" are /r1).

@@ -34,6 +34,8 @@ struct PluginInfo {
   std::string link;             // the link it is on or measures ("" for the whole model)
   double rate = 0.0;            // [Hz], 0 = every step
   bool lazy = false;            // computed only while active (someone listens)
+  std::vector<InputPort> inputs;    // its input ports, topics resolved (the kind's `inputs`)
+  std::vector<OutputPort> outputs;  // its output ports, topics and frames resolved (the kind's `outputs`)
 };
 
 // What a spawned robot is, for the skins: its model, resolved plug-ins and namespace.
@@ -128,8 +130,14 @@ class World {
   void set_sensor_active(const std::string& robot, const std::string& plugin, bool active) {
     set_plugin_active(robot, plugin, active);
   }
-  // A robot's plug-in instance (for a skin to command it, e.g. through TwistDrive); nullptr when none.
+  // A robot's plug-in instance (for tests and the controller layer); nullptr when none.
   Plugin* plugin(const std::string& robot, const std::string& name);
+
+  // A value for an input port of a plug-in instance (PluginInfo::inputs), between steps: the one way a command
+  // enters the core. A value with a non-finite number (of the components a Twist port reads) is not passed on:
+  // the result says so, for the skin's one warning. Unknown robots, plug-ins and ports, and a value of another
+  // type than the port's, throw std::invalid_argument.
+  CommandResult command(const std::string& robot, const std::string& plugin, const std::string& port, Command value);
 
   // Every output produced since the last call, in instance order.
   OutputQueue take_outputs();
@@ -143,8 +151,8 @@ class World {
   }
   OutputQueue take_outputs_if(const std::function<bool(const Output&)>& pick);
 
-  // Commands every drive plug-in of the robot (TwistDrive): v [m/s] forward, w [rad/s] about z. Non-finite
-  // values and unknown robots throw std::invalid_argument; a robot without a drive ignores the command.
+  // Commands every Twist input of the robot's plug-ins (its drives): v [m/s] forward, w [rad/s] about z.
+  // Non-finite values and unknown robots throw std::invalid_argument; a robot without a drive ignores the command.
   void set_cmd_vel(const std::string& robot, double v, double w);
   void set_cmd_vel(const std::string& robot, const Twist& cmd);
   // Odometry produced since the last call (the drive plug-ins' outputs).

@@ -170,3 +170,95 @@ void OdometryOut::visit(FieldVisitor& v) const {
 }
 
 }  // namespace car_sim
+
+// ---- ports ----------------------------------------------------------------------------------------------------
+
+namespace car_sim {
+
+bool namespace_rule(const std::string& filename, NamespaceRule* rule) {
+  const PluginKind* k = plugin_kind_for_file(filename);
+  *rule = NamespaceRule::AsWritten;
+  if (!k) return false;
+  const auto it = k->file_namespace_rules.find(filename);
+  *rule = it == k->file_namespace_rules.end() ? k->namespace_rule : it->second;
+  return true;
+}
+
+std::string plugin_robot_namespace(const PluginConfig& c, const std::string& model_name) {
+  NamespaceRule rule;
+  namespace_rule(c.filename, &rule);
+  const bool present = c.has("robotNamespace") && !c.param("robotNamespace").from_default;
+  std::string ns = present ? c.text("robotNamespace") : "";
+  const bool to_model = present ? ns.empty() && (rule == NamespaceRule::ModelName || rule == NamespaceRule::EmptyIsModel)
+                                : (rule == NamespaceRule::ModelName || rule == NamespaceRule::AbsentIsModel);
+  if (to_model) ns = model_name;
+  // "/" and "" are the global namespace; "r1/" is what NodeHandle("r1" + "/") names
+  while (!ns.empty() && ns.front() == '/') ns.erase(ns.begin());
+  while (!ns.empty() && ns.back() == '/') ns.pop_back();
+  return ns;
+}
+
+OutputPort odometry_port(const PluginConfig& c, const std::string& robot, const std::string& topic_key, uint32_t queue,
+                         TfOrder tf, double cov_x, double cov_y, double cov_yaw) {
+  OutputPort p;
+  p.name = "odom";
+  p.type = SampleType::Odometry;
+  p.ns = plugin_robot_namespace(c, robot);
+  p.topic = resolve_topic(p.ns, c.text(topic_key));
+  p.queue = queue;
+  p.frame = c.text("odometryFrame");
+  p.child_frame = c.text("robotBaseFrame");
+  p.tf = tf;
+  p.pose_covariance = {cov_x, cov_y, 1e12, 1e12, 1e12, cov_yaw};
+  return p;
+}
+
+OutputPort joint_states_port(const PluginConfig& c, const std::string& robot, uint32_t queue) {
+  OutputPort p;
+  p.name = "joint_states";
+  p.type = SampleType::JointStates;
+  p.ns = plugin_robot_namespace(c, robot);
+  p.topic = resolve_topic(p.ns, "joint_states");
+  p.queue = queue;
+  return p;
+}
+
+OutputPort wheel_tf_port(const PluginConfig& c, const std::string& robot) {
+  OutputPort p;
+  p.name = "wheel_tf";
+  p.type = SampleType::JointTransforms;
+  p.ns = plugin_robot_namespace(c, robot);
+  return p;
+}
+
+std::string resolve_topic(const std::string& ns, const std::string& topic) {
+  if (!topic.empty() && topic[0] == '/') return topic;
+  return ns.empty() ? "/" + topic : "/" + ns + "/" + topic;
+}
+
+std::function<std::vector<InputPort>(const PluginConfig&, const std::string&)> topic_input(
+    const std::string& port, InputType type, const std::string& topic_key, uint32_t queue, uint32_t axes) {
+  return [=](const PluginConfig& c, const std::string& robot) {
+    InputPort p;
+    p.name = port;
+    p.type = type;
+    const std::string topic = c.text(topic_key);
+    if (!topic.empty()) p.topic = resolve_topic(plugin_robot_namespace(c, robot), topic);
+    p.queue = queue;
+    p.axes = axes;
+    return std::vector<InputPort>{p};
+  };
+}
+
+const char* command_noun(InputType type) {
+  switch (type) {
+    case InputType::Twist: return "cmd_vel";
+    case InputType::Wrench: return "wrench";
+    case InputType::JointTrajectory: return "trajectory";
+    case InputType::Pose: return "pose target";
+    case InputType::Trigger: return "trigger";
+  }
+  return "command";
+}
+
+}  // namespace car_sim

@@ -1,6 +1,7 @@
-// ROS adapters: one per plug-in kind (src/ros/adapters/<kind>.cpp), registered in src/ros/adapters/registry.cpp.
-// An adapter turns one plug-in instance's configuration into publishers and subscribers, and its outputs into
-// messages. The node owns pacing, /clock, the /gazebo services and the loop that feeds the adapters.
+// ROS adapters, for the kinds whose outputs have no port type yet (src/ros/adapters/<kind>.cpp), registered in
+// src/ros/adapters/registry.cpp. An adapter turns one plug-in instance's configuration into publishers, and its
+// outputs into messages; inputs go through inputs.cpp, ported outputs through outputs.cpp. The node owns pacing,
+// /clock, the /gazebo services and the loop that feeds the adapters. NodeContext is what all of them may use.
 #pragma once
 
 #include <ros/ros.h>

@@ -1,5 +1,5 @@
-// The node's loop: pacing against the wall clock (rtf), /clock, the adapters' outputs, joint states and model
-// states, and which lazy plug-ins someone listens to.
+// The node's loop: pacing against the wall clock (rtf), /clock, the plug-ins' outputs (ports or adapters), joint
+// states and model states, and which lazy plug-ins someone listens to.
 #include "node.hpp"
 
 #include <ros/callback_queue.h>
@@ -220,7 +220,12 @@ void SimNode::publish_outputs() {
     const auto robot = route_.find(o->robot);
     if (robot == route_.end()) continue;
     const auto it = robot->second.find(o->plugin);
-    if (it != robot->second.end()) it->second->publish_owned(std::move(o), *this);
+    if (it == robot->second.end()) continue;
+    if (it->second.adapter)
+      it->second.adapter->publish_owned(std::move(o), *this);
+    else
+      it->second.outputs->publish(*o, *this);
+    if (it->second.polled) it->second.polled->poll();
   }
   // lazy plug-ins compute only while someone listens; look every 50 steps
   if (tick % 50 == 0) update_activity();
@@ -261,14 +266,14 @@ void SimNode::publish_outputs() {
 void SimNode::update_activity() {
   for (auto& [name, io] : io_)
     for (auto& p : io.plugins) {
-      if (!p.info.lazy || !p.adapter) continue;
-      const bool want = p.adapter->listened();
+      if (!p.info.lazy || (!p.adapter && !p.outputs)) continue;
+      const bool want = p.adapter ? p.adapter->listened() : p.outputs->listened();
       if (want != p.active) {
         world_->set_plugin_active(name, p.info.config.name, want);
         p.active = want;
       }
       // only the parts someone takes are made (a depth camera's depth image without its colour and cloud)
-      const uint32_t parts = p.adapter->parts();
+      const uint32_t parts = p.adapter ? p.adapter->parts() : ~0u;
       if (parts != p.parts) {
         world_->plugin(name, p.info.config.name)->set_parts(parts);
         p.parts = parts;
@@ -297,15 +302,27 @@ void SimNode::make_io(const std::string& name) {
     PluginIO pio;
     pio.info = p;
     const AdapterKind* a = find_adapter(p.config.kind);
-    if (!a) {
+    if (!a && p.inputs.empty() && p.outputs.empty()) {
       ROS_WARN("car: %s: plug-in '%s' (%s) is simulated but has no ROS adapter; nothing is published for it",
                name.c_str(), p.config.name.c_str(), p.config.filename.c_str());
       io.plugins.push_back(std::move(pio));
       continue;
     }
-    pio.adapter = a->make();
-    const std::string offers = pio.adapter->setup(p, info, *this);
-    route_[name][p.config.name] = pio.adapter.get();
+    std::string offers;
+    if (!p.outputs.empty()) {
+      // the output ports: one converter per sample type (outputs.cpp)
+      pio.outputs = std::make_unique<OutputPorts>();
+      offers = pio.outputs->setup(p, info, *this);
+    } else if (a) {
+      pio.adapter = a->make();
+      offers = pio.adapter->setup(p, info, *this);
+    }
+    // the input ports: one subscriber factory per sample type (inputs.cpp)
+    pio.inputs = std::make_unique<InputPorts>();
+    const std::string inputs = pio.inputs->setup(p, *this);
+    if (!inputs.empty() && !pio.adapter) offers += (offers.empty() ? "input " : ", input ") + inputs;
+    if (pio.adapter || pio.outputs)
+      route_[name][p.config.name] = {pio.adapter.get(), pio.outputs.get(), pio.inputs->polled() ? pio.inputs.get() : nullptr};
     if (!p.config.sensor.empty())
       ROS_INFO("car: %s: sensor '%s' (%s, %s) on %s at %g Hz: %s", name.c_str(), p.config.sensor.c_str(),
                p.config.sensor_type.c_str(), p.config.filename.c_str(), p.link.c_str(), p.rate, offers.c_str());

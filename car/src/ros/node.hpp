@@ -1,6 +1,7 @@
 // car's simulator node: the ROS skin over car_sim::World. It paces the world against the wall clock (rtf),
-// publishes /clock, runs Gazebo-style services under /gazebo (services.cpp), and feeds every plug-in instance's
-// outputs to its kind's adapter (adapters/). All maths lives in the core.
+// publishes /clock, runs Gazebo-style services under /gazebo (services.cpp), subscribes every input port
+// (inputs.cpp), and feeds every plug-in instance's outputs to its output ports (outputs.cpp) or, for a kind not yet
+// on ports, to its kind's adapter (adapters/). All maths lives in the core.
 #pragma once
 
 #include <gazebo_msgs/DeleteModel.h>
@@ -35,6 +36,8 @@
 #include <vector>
 
 #include "adapter.hpp"
+#include "inputs.hpp"
+#include "outputs.hpp"
 #include "lockstep.hpp"
 #include "pacer.hpp"
 #include "publish_queue.hpp"
@@ -76,6 +79,8 @@ class SimNode : public NodeContext {
   struct PluginIO {
     car_sim::PluginInfo info;
     std::unique_ptr<Adapter> adapter;
+    std::unique_ptr<InputPorts> inputs;
+    std::unique_ptr<OutputPorts> outputs;  // a kind whose outputs have ports (it has no adapter)
     bool active = false;
     uint32_t parts = ~0u;  // the output parts last handed to the plug-in (Plugin::set_parts)
   };
@@ -142,8 +147,14 @@ class SimNode : public NodeContext {
   Pacer pacer_{std::chrono::milliseconds(10)};
   std::vector<ros::ServiceServer> services_;
   std::map<std::string, RobotIO> io_;
-  // robot -> plug-in -> its adapter, for routing outputs (looked up by the output's own strings: no copy per output)
-  std::map<std::string, std::map<std::string, Adapter*>> route_;
+  // robot -> plug-in -> its adapter and its inputs read from TF (nullptr: none), for routing outputs (looked up by
+  // the output's own strings: no copy per output)
+  struct Route {
+    Adapter* adapter = nullptr;
+    OutputPorts* outputs = nullptr;
+    InputPorts* polled = nullptr;
+  };
+  std::map<std::string, std::map<std::string, Route>> route_;
   std::unique_ptr<tf2_ros::TransformBroadcaster> tf_;
   // docs/COMPAT-dropins.md: car-only topics per robot (joint_states, /gazebo/ground_truth/<model>); stop after
   // ~iters steps (gzserver --iters, 0 = never); dynamic_reconfigure server (type-erased) and performance metrics

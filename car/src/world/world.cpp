@@ -1,10 +1,11 @@
 // The world: the const description, the physics, and the robots' plug-in instances on their schedules. A step
 // runs every plug-in's pre_physics, one physics step, then every plug-in's track and, when due, post_physics.
-// No kind is named here: kinds come from the registry, drives are reached through TwistDrive.
+// No kind is named here: kinds come from the registry, commands reach them through their input ports.
 #include "car_sim/world.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <map>
 #include <stdexcept>
@@ -148,6 +149,8 @@ struct World::Impl : WorldAccess {
     i.info.link = c.link;
     i.info.rate = i.plugin->update_rate();
     i.info.lazy = kind->lazy;
+    if (kind->inputs) i.info.inputs = kind->inputs(c, r.info.name);
+    if (kind->outputs) i.info.outputs = kind->outputs(c, r.info.name);
     return i;
   }
 
@@ -436,7 +439,74 @@ void World::set_cmd_vel(const std::string& robot, double v, double w) {
 void World::set_cmd_vel(const std::string& robot, const Twist& cmd) {
   if (!cmd.linear.allFinite() || !cmd.angular.allFinite()) throw std::invalid_argument("cmd_vel must be finite");
   for (auto& i : impl_->robot(robot).plugins)
-    if (auto* d = dynamic_cast<TwistDrive*>(i.plugin.get())) d->set_twist(cmd);
+    for (const InputPort& p : i.info.inputs)
+      if (p.type == InputType::Twist) command(robot, i.info.config.name, p.name, cmd);
+}
+
+namespace {
+
+// "linear.x nan, angular.z 0": the named values, for a rejection's reason.
+std::string listed(const std::vector<std::pair<const char*, double>>& values) {
+  std::string s;
+  for (const auto& v : values) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%s%s %g", s.empty() ? "" : ", ", v.first, v.second);
+    s += buf;
+  }
+  return s;
+}
+
+// The non-finite numbers of a command, listed; "" when every number is finite. A trajectory's positions are the
+// plug-in's to use as they come (upstream sets them as given).
+std::string non_finite(const Command& value) {
+  if (const auto* t = std::get_if<Twist>(&value)) {
+    if (t->linear.allFinite() && t->angular.allFinite()) return "";
+    static const char* names[6] = {"linear.x", "linear.y", "linear.z", "angular.x", "angular.y", "angular.z"};
+    std::vector<std::pair<const char*, double>> v;
+    for (int k = 0; k < 6; ++k) {
+      const double x = k < 3 ? t->linear[k] : t->angular[k - 3];
+      if (x != 0.0 || !std::isfinite(x)) v.emplace_back(names[k], x);
+    }
+    return listed(v);
+  }
+  if (const auto* w = std::get_if<Wrench>(&value)) {
+    if (w->force.allFinite() && w->torque.allFinite()) return "";
+    return listed({{"force.x", w->force.x()}, {"force.y", w->force.y()}, {"force.z", w->force.z()},
+                   {"torque.x", w->torque.x()}, {"torque.y", w->torque.y()}, {"torque.z", w->torque.z()}});
+  }
+  if (const auto* p = std::get_if<PoseCommand>(&value))
+    return p->pose.matrix().allFinite() ? "" : listed({{"x", p->pose.translation().x()}, {"y", p->pose.translation().y()},
+                                                       {"z", p->pose.translation().z()}});
+  return "";
+}
+
+}  // namespace
+
+CommandResult World::command(const std::string& robot, const std::string& plugin, const std::string& port,
+                             Command value) {
+  Instance* i = impl_->instance(robot, plugin);
+  if (!i) throw std::invalid_argument("robot '" + robot + "' has no plug-in '" + plugin + "'");
+  const InputPort* p = nullptr;
+  for (const InputPort& q : i->info.inputs)
+    if (q.name == port) p = &q;
+  if (!p) throw std::invalid_argument("plug-in '" + plugin + "' of robot '" + robot + "' has no input '" + port + "'");
+  if (value.index() != static_cast<size_t>(p->type))
+    throw std::invalid_argument("input '" + port + "' of plug-in '" + plugin + "' takes a " + command_noun(p->type));
+  // a Twist port reads only its components: the others are dropped before the check
+  if (auto* t = std::get_if<Twist>(&value)) {
+    static const uint32_t bits[6] = {kLinearX, kLinearY, kLinearZ, kAngularX, kAngularY, kAngularZ};
+    for (int k = 0; k < 6; ++k)
+      if (!(p->axes & bits[k])) (k < 3 ? t->linear[k] : t->angular[k - 3]) = 0.0;
+  }
+  CommandResult result;
+  const std::string bad = non_finite(value);
+  if (!bad.empty()) {
+    result.accepted = false;
+    result.reason = "a non-finite value (" + bad + ")";
+    return result;
+  }
+  i->plugin->command(port, value, &result);
+  return result;
 }
 
 std::vector<Contact> World::contacts() const { return impl_->contacts(); }

@@ -508,6 +508,7 @@ const PluginKind& camera_kind() {
     PluginKind k;
     k.name = "camera";
     k.filenames = {"libgazebo_ros_camera.so"};
+    k.namespace_rule = NamespaceRule::EmptyIsModel;  // GetRobotNamespace (gazebo_ros_camera_utils.cpp)
     k.model_level = false;
     k.sensor_types = {"camera"};
     k.sensor_schema = camera_sensor_schema();

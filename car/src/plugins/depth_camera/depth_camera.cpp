@@ -25,6 +25,7 @@ const PluginKind& depth_camera_kind() {
     PluginKind k;
     k.name = "depth_camera";
     k.filenames = {"libgazebo_ros_depth_camera.so"};
+    k.namespace_rule = NamespaceRule::EmptyIsModel;  // GetRobotNamespace (gazebo_ros_camera_utils.cpp)
     k.model_level = false;
     k.sensor_types = {"depth"};
     k.sensor_schema = camera_sensor_schema();

@@ -11,15 +11,7 @@ namespace car_sim {
 DiffDriveConfig DiffDriveConfig::from(const PluginConfig& c, const std::string& model_name) {
   DiffDriveConfig d;
   d.plugin_name = c.name;
-  const ResolvedParam& ns = c.param("robotNamespace");
-  if (ns.from_default || ns.value.empty()) {
-    d.robot_namespace = model_name;
-  } else {
-    std::string s = ns.value;
-    while (!s.empty() && s.front() == '/') s.erase(s.begin());
-    while (!s.empty() && s.back() == '/') s.pop_back();
-    d.robot_namespace = s;  // "/" -> "" (global)
-  }
+  d.robot_namespace = plugin_robot_namespace(c, model_name);
   d.command_topic = c.text("commandTopic");
   d.odometry_topic = c.text("odometryTopic");
   d.odometry_frame = c.text("odometryFrame");
@@ -96,6 +88,7 @@ class DiffDrive : public Plugin, public TwistDrive {
     cmd_v_ = cmd.linear.x();
     cmd_w_ = cmd.angular.z();
   }
+  void command(const std::string&, const Command& value, CommandResult*) override { set_twist(std::get<Twist>(value)); }
 
   void reset() override {
     cmd_v_ = cmd_w_ = 0.0;
@@ -204,6 +197,7 @@ const PluginKind& diff_drive_kind() {
     PluginKind k;
     k.name = "diff_drive";
     k.filenames = {"libgazebo_ros_diff_drive.so"};
+    k.namespace_rule = NamespaceRule::ModelName;  // GazeboRos (gazebo_ros_diff_drive.cpp)
     k.schema = {
         {"robotNamespace", T, "", ""},
         {"commandTopic", T, "cmd_vel", ""},
@@ -226,6 +220,16 @@ const PluginKind& diff_drive_kind() {
     };
     k.ignored = {{"legacyMode", ""}, {"broadcastTF", ""}, {"alwaysOn", ""}};
     k.output_group = "odometry";
+    k.inputs = topic_input("cmd_vel", InputType::Twist, "commandTopic", 10, kLinearX | kAngularZ);
+    // odom (queue 100; none at all with publishTf false, as upstream) and its TF after it; the wheels on request
+    k.outputs = [](const PluginConfig& c, const std::string& robot) {
+      std::vector<OutputPort> ports = {
+          odometry_port(c, robot, "odometryTopic", 100, c.flag("publishOdomTF") ? TfOrder::After : TfOrder::None)};
+      if (!c.flag("publishTf")) ports[0].topic.clear();
+      if (c.flag("publishWheelJointState")) ports.push_back(joint_states_port(c, robot, 10));
+      if (c.flag("publishWheelTF")) ports.push_back(wheel_tf_port(c, robot));
+      return ports;
+    };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t) -> std::unique_ptr<Plugin> {
       return std::make_unique<DiffDrive>(c, robot);

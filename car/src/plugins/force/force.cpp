@@ -19,6 +19,7 @@ class Force : public Plugin, public WrenchCommand {
   explicit Force(const PluginConfig& c) : link_(c.text("bodyName")) {}
   double update_rate() const override { return 0.0; }
   void set_wrench(const Wrench& w) override { wrench_ = w; }
+  void command(const std::string&, const Command& value, CommandResult*) override { set_wrench(std::get<Wrench>(value)); }
   void reset() override { wrench_ = Wrench(); }
   void pre_physics(const StepContext&, RobotHandle& robot) override {
     if (wrench_.force.isZero() && wrench_.torque.isZero()) return;
@@ -52,6 +53,7 @@ const PluginKind& force_kind() {
         {"topicName", T, "", ""},
     };
     k.ignored = {{"alwaysOn", ""}, {"updateRate", "force applies its wrench every step"}};
+    k.inputs = topic_input("wrench", InputType::Wrench, "topicName", 1);
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string&, uint64_t) -> std::unique_ptr<Plugin> {
       return std::make_unique<Force>(c);

@@ -53,6 +53,9 @@ class HandOfGod : public Plugin, public PoseTarget {
     has_target_ = true;
   }
   void reset() override { has_target_ = false; }
+  void command(const std::string&, const Command& value, CommandResult*) override {
+    set_target(std::get<PoseCommand>(value).pose);
+  }
 
   void pre_physics(const StepContext& ctx, RobotHandle& robot) override {
     // the link's gravity off: an equal and opposite force at its centre of mass [N], world frame
@@ -116,6 +119,17 @@ const PluginKind& hand_of_god_kind() {
     // its pushes run every step regardless; only the actual-pose output is lazy (the ROS adapter always listens)
     k.lazy = true;
     k.output_group = "poses";
+    // the target is read from TF: world -> <frameId>_desired
+    k.inputs = [](const PluginConfig& c, const std::string&) {
+      std::string f = c.text("frameId");
+      while (!f.empty() && f.front() == '/') f.erase(f.begin());
+      InputPort p;
+      p.name = "target";
+      p.type = InputType::Pose;
+      p.frame = f + "_desired";
+      p.parent_frame = "world";
+      return std::vector<InputPort>{p};
+    };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string&, uint64_t) -> std::unique_ptr<Plugin> {
       return std::make_unique<HandOfGod>(c);

@@ -193,6 +193,9 @@ const PluginKind& imu_kind() {
     PluginKind k;
     k.name = "imu";
     k.filenames = {"libgazebo_ros_imu_sensor.so", "libgazebo_ros_imu.so"};
+    // gazebo_ros_imu_sensor.cpp: absent -> the model's name; the model plug-in gazebo_ros_imu.cpp: as written
+    k.namespace_rule = NamespaceRule::AbsentIsModel;
+    k.file_namespace_rules = {{"libgazebo_ros_imu.so", NamespaceRule::AsWritten}};
     k.model_level = true;
     k.sensor_types = {"imu"};
     k.sensor_schema = imu_sensor_schema();

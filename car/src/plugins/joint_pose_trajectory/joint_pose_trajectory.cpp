@@ -36,6 +36,24 @@ class JointPoseTrajectory : public Plugin, public TrajectoryCommand {
 
   void reset() override { active_ = false; }
 
+  // header.frame_id "", "world", "map" or a link of this model (whose pose is held anyway: car sets joint
+  // positions without moving the base); any other frame is refused with an error, as upstream.
+  void command(const std::string&, const Command& value, CommandResult* result) override {
+    const JointTrajectory& t = std::get<JointTrajectory>(value);
+    std::string ref = t.frame_id;
+    while (!ref.empty() && ref.front() == '/') ref.erase(ref.begin());
+    if (!ref.empty() && ref != "world" && ref != "map" && !(robot_ && robot_->model().find_link(ref))) {
+      result->notes.push_back(
+          {true, "the trajectory's frame_id '" + ref + "' is neither world nor a link of the model; ignored"});
+      return;
+    }
+    for (const auto& p : t.points)
+      if (p.positions.size() != t.joint_names.size())
+        result->notes.push_back({true, "a point has " + std::to_string(p.positions.size()) + " positions for " +
+                                           std::to_string(t.joint_names.size()) + " joint names; it will be skipped"});
+    for (const auto& n : set_trajectory(t)) result->notes.push_back({false, "no joint '" + n + "' in the model; skipped"});
+  }
+
   void pre_physics(const StepContext& ctx, RobotHandle& robot) override {
     if (!active_) return;
     const double now = ctx.time();
@@ -79,6 +97,7 @@ const PluginKind& joint_pose_trajectory_kind() {
         {"updateRate", N, "0", "Hz"},
     };
     k.ignored = {{"alwaysOn", ""}};
+    k.inputs = topic_input("trajectory", InputType::JointTrajectory, "topicName", 100);
     k.finish = finish;
     k.make = [](const PluginConfig&, const std::string&, uint64_t) -> std::unique_ptr<Plugin> {
       return std::make_unique<JointPoseTrajectory>();

@@ -8,17 +8,6 @@
 
 namespace car_sim {
 
-struct TrajectoryPoint {
-  std::vector<double> positions;  // [rad] or [m], one per joint name
-  double time_from_start = 0.0;   // [s]; upstream uses it as the wait after this point
-};
-
-struct JointTrajectory {
-  std::vector<std::string> joint_names;
-  std::vector<TrajectoryPoint> points;
-  double start = 0.0;  // [s] sim time of the first point (earlier: now)
-};
-
 // A plug-in that takes a trajectory command (the ROS adapter feeds it).
 class TrajectoryCommand {
  public:

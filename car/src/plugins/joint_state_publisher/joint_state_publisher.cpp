@@ -78,6 +78,7 @@ const PluginKind& joint_state_publisher_kind() {
     PluginKind k;
     k.name = "joint_state_publisher";
     k.filenames = {"libgazebo_ros_joint_state_publisher.so"};
+    k.namespace_rule = NamespaceRule::ModelName;  // GazeboRos (gazebo_ros_joint_state_publisher.cpp)
     k.schema = {
         {"robotNamespace", T, "", ""},
         {"jointName", T, "", ""},
@@ -86,6 +87,10 @@ const PluginKind& joint_state_publisher_kind() {
     k.ignored = {{"alwaysOn", ""}};
     k.lazy = true;
     k.output_group = "joint_states";
+    // sensor_msgs/JointState on <namespace>/joint_states, queue 1000 as upstream
+    k.outputs = [](const PluginConfig& c, const std::string& robot) {
+      return std::vector<OutputPort>{joint_states_port(c, robot, 1000)};
+    };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string&, uint64_t) -> std::unique_ptr<Plugin> {
       return std::make_unique<JointStatePublisher>(c);

@@ -208,6 +208,7 @@ const PluginKind& laser_kind() {
     PluginKind k;
     k.name = "laser";
     k.filenames = {"libgazebo_ros_laser.so", "libgazebo_ros_gpu_laser.so"};
+    k.namespace_rule = NamespaceRule::EmptyIsModel;  // GetRobotNamespace (gazebo_ros_laser.cpp, gazebo_ros_gpu_laser.cpp)
     k.model_level = false;
     k.sensor_types = {"ray", "gpu_ray"};
     k.sensor_schema = ray_sensor_schema();

@@ -187,6 +187,7 @@ const PluginKind& multicamera_kind() {
     PluginKind k;
     k.name = "multicamera";
     k.filenames = {"libgazebo_ros_multicamera.so"};
+    k.namespace_rule = NamespaceRule::EmptyIsModel;  // GetRobotNamespace (gazebo_ros_camera_utils.cpp)
     k.model_level = false;
     k.sensor_types = {"multicamera"};
     k.sensor_schema = {{"update_rate", ParamType::Number, "0", "Hz"}};

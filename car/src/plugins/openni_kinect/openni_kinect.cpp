@@ -26,6 +26,7 @@ const PluginKind& openni_kinect_kind() {
     PluginKind k;
     k.name = "openni_kinect";
     k.filenames = {"libgazebo_ros_openni_kinect.so"};
+    k.namespace_rule = NamespaceRule::EmptyIsModel;  // GetRobotNamespace (gazebo_ros_camera_utils.cpp)
     k.model_level = false;
     k.sensor_types = {"depth"};
     k.sensor_schema = camera_sensor_schema();

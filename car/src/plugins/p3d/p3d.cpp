@@ -108,6 +108,22 @@ const PluginKind& p3d_kind() {
     k.ignored = {{"alwaysOn", ""}};
     k.lazy = true;
     k.output_group = "poses";
+    // nav_msgs/Odometry on topicName (queue 100): frameName -> bodyName, gaussianNoise^2 on every diagonal entry
+    k.outputs = [](const PluginConfig& c, const std::string& robot) {
+      OutputPort p;
+      p.name = "odom";
+      p.type = SampleType::Odometry;
+      p.ns = plugin_robot_namespace(c, robot);
+      p.topic = resolve_topic(p.ns, c.text("topicName"));
+      p.queue = 100;
+      p.frame = c.text("frameName");
+      p.child_frame = c.text("bodyName");
+      p.tf_prefix = false;
+      const double variance = c.number("gaussianNoise") * c.number("gaussianNoise");
+      p.pose_covariance.fill(variance);
+      p.twist_covariance.fill(variance);
+      return std::vector<OutputPort>{p};
+    };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {
       return std::make_unique<P3d>(c, robot, seed);

@@ -33,6 +33,7 @@ class PlanarMove : public Plugin, public TwistDrive {
     rot_ = cmd.angular.z();
     cmd_fresh_ = true;
   }
+  void command(const std::string&, const Command& value, CommandResult*) override { set_twist(std::get<Twist>(value)); }
 
   void reset() override {
     vx_ = vy_ = rot_ = 0.0;
@@ -114,6 +115,11 @@ const PluginKind& planar_move_kind() {
     k.ignored = {{"alwaysOn", ""}, {"updateRate", "planar_move reads odometryRate, not updateRate"}};
     k.output_group = "odometry";
     k.finish = finish;
+    k.inputs = topic_input("cmd_vel", InputType::Twist, "commandTopic", 1, kLinearX | kLinearY | kAngularZ);
+    // odom with its TF sent first
+    k.outputs = [](const PluginConfig& c, const std::string& robot) {
+      return std::vector<OutputPort>{odometry_port(c, robot, "odometryTopic", 1, TfOrder::Before)};
+    };
     k.make = [](const PluginConfig& c, const std::string&, uint64_t) -> std::unique_ptr<Plugin> {
       return std::make_unique<PlanarMove>(c);
     };

@@ -447,6 +447,7 @@ const PluginKind& ros_control_kind() {
     PluginKind k;
     k.name = "ros_control";
     k.filenames = {"libgazebo_ros_control.so"};
+    k.namespace_rule = NamespaceRule::AbsentIsModel;  // gazebo_ros_control_plugin.cpp: absent -> the model's name
     k.schema = {
         {"robotNamespace", T, "", ""},
         {"controlPeriod", N, "0", "s"},

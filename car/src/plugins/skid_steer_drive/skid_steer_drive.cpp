@@ -42,6 +42,7 @@ class SkidSteer : public Plugin, public TwistDrive {
     cmd_v_ = cmd.linear.x();
     cmd_w_ = cmd.angular.z();
   }
+  void command(const std::string&, const Command& value, CommandResult*) override { set_twist(std::get<Twist>(value)); }
 
   void reset() override {
     cmd_v_ = cmd_w_ = 0.0;
@@ -135,6 +136,14 @@ const PluginKind& skid_steer_drive_kind() {
     k.ignored = {{"alwaysOn", ""}};
     k.output_group = "odometry";
     k.finish = finish;
+    k.inputs = topic_input("cmd_vel", InputType::Twist, "commandTopic", 1, kLinearX | kAngularZ);
+    // odom with covariance_x/_y/_yaw on pose and twist; its TF, sent first, only with broadcastTF
+    k.outputs = [](const PluginConfig& c, const std::string& robot) {
+      OutputPort odom = odometry_port(c, robot, "odometryTopic", 1, c.flag("broadcastTF") ? TfOrder::Before : TfOrder::None,
+                                      c.number("covariance_x"), c.number("covariance_y"), c.number("covariance_yaw"));
+      odom.twist_covariance = odom.pose_covariance;
+      return std::vector<OutputPort>{odom};
+    };
     k.make = [](const PluginConfig& c, const std::string&, uint64_t) -> std::unique_ptr<Plugin> {
       return std::make_unique<SkidSteer>(c);
     };

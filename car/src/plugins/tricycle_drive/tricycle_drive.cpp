@@ -55,6 +55,7 @@ class Tricycle : public Plugin, public TwistDrive {
     speed_ = cmd.linear.x();
     angle_ = cmd.angular.z();
   }
+  void command(const std::string&, const Command& value, CommandResult*) override { set_twist(std::get<Twist>(value)); }
 
   void reset() override {
     speed_ = angle_ = wheel_target_ = steer_rate_ = 0.0;
@@ -153,6 +154,7 @@ const PluginKind& tricycle_drive_kind() {
     PluginKind k;
     k.name = "tricycle_drive";
     k.filenames = {"libgazebo_ros_tricycle_drive.so"};
+    k.namespace_rule = NamespaceRule::ModelName;  // GazeboRos (gazebo_ros_tricycle_drive.cpp)
     k.schema = {
         {"robotNamespace", T, "", ""},
         {"actuatedWheelDiameter", N, "0.15", "m"},
@@ -180,6 +182,15 @@ const PluginKind& tricycle_drive_kind() {
     k.ignored = {{"alwaysOn", ""}, {"rosDebugLevel", ""}, {"publishTf", ""}};
     k.output_group = "odometry";
     k.finish = finish;
+    // angular.z is the steering angle [rad]
+    k.inputs = topic_input("cmd_vel", InputType::Twist, "commandTopic", 1, kLinearX | kAngularZ);
+    // odom with its TF sent first; the wheels on request (joint states with queue 1000, as upstream)
+    k.outputs = [](const PluginConfig& c, const std::string& robot) {
+      std::vector<OutputPort> ports = {odometry_port(c, robot, "odometryTopic", 1, TfOrder::Before)};
+      if (c.flag("publishWheelJointState")) ports.push_back(joint_states_port(c, robot, 1000));
+      if (c.flag("publishWheelTF")) ports.push_back(wheel_tf_port(c, robot));
+      return ports;
+    };
     k.make = [](const PluginConfig& c, const std::string&, uint64_t) -> std::unique_ptr<Plugin> {
       return std::make_unique<Tricycle>(c);
     };

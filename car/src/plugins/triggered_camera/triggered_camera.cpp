@@ -19,6 +19,7 @@ class TriggeredCamera : public CameraPlugin, public CameraTrigger {
     pending_ = 0;
   }
   void trigger() override { ++pending_; }
+  void command(const std::string&, const Command&, CommandResult*) override { trigger(); }
   void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) override {
     if (pending_ == 0) return;
     --pending_;
@@ -36,9 +37,22 @@ const PluginKind& triggered_camera_kind() {
     PluginKind k = camera_kind();
     k.name = "triggered_camera";
     k.filenames = {"libgazebo_ros_triggered_camera.so"};
+    k.namespace_rule = NamespaceRule::EmptyIsModel;  // GetRobotNamespace (gazebo_ros_camera_utils.cpp)
     k.schema.push_back({"triggerTopicName", ParamType::Text, "image_trigger", ""});
     // not lazy: a trigger is used up even while nobody listens, as upstream's OnNewFrame does
     k.lazy = false;
+    // the trigger topic sits beside the image: under <robotNamespace>/<cameraName>
+    k.inputs = [](const PluginConfig& c, const std::string& robot) {
+      std::string base = plugin_robot_namespace(c, robot);
+      std::string cam = c.text("cameraName");
+      while (!cam.empty() && cam.front() == '/') cam.erase(cam.begin());
+      if (!cam.empty()) base = base.empty() ? cam : base + "/" + cam;
+      InputPort p;
+      p.name = "trigger";
+      p.type = InputType::Trigger;
+      p.topic = resolve_topic(base, c.text("triggerTopicName"));
+      return std::vector<InputPort>{p};
+    };
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {
       return std::make_unique<TriggeredCamera>(c, robot, seed);
     };

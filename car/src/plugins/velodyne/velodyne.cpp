@@ -94,6 +94,7 @@ const PluginKind& velodyne_kind() {
     PluginKind k;
     k.name = "velodyne";
     k.filenames = {"libgazebo_ros_velodyne_laser.so", "libgazebo_ros_velodyne_gpu_laser.so"};
+    // <robotNamespace> as written (AsWritten): absent "/", empty NodeHandle(""): both global
     k.model_level = false;
     k.sensor_types = {"ray", "gpu_ray"};
     k.sensor_schema = ray_sensor_schema();

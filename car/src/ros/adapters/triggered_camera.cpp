@@ -1,6 +1,6 @@
-// libgazebo_ros_triggered_camera.so on ROS: the camera's image and camera_info under <robotNamespace>/<cameraName>/,
-// and its trigger topic there (std_msgs/Empty, queue 1): each message renders one frame in the next step.
-#include <std_msgs/Empty.h>
+// libgazebo_ros_triggered_camera.so on ROS: the camera's image and camera_info under <robotNamespace>/<cameraName>/;
+// its trigger topic there (std_msgs/Empty, queue 1) is the kind's Trigger input port (inputs.cpp): each message
+// renders one frame in the next step.
 
 #include "../adapter.hpp"
 #include "../conversions.hpp"
@@ -15,14 +15,8 @@ class TriggeredCameraAdapter : public Adapter {
  public:
   std::string setup(const car_sim::PluginInfo& p, const car_sim::RobotInfo& robot, NodeContext& node) override {
     std::string topics = topics_.advertise(node.nh(), p.config, robot.name);
-    auto* camera = dynamic_cast<car_sim::CameraTrigger*>(node.world().plugin(robot.name, p.config.name));
-    // the callback runs on the node's thread between steps
-    trigger_ = node.nh().subscribe<std_msgs::Empty>(
-        topic_in(topics_.base(), p.config.text("triggerTopicName")), 1,
-        [camera](const std_msgs::Empty::ConstPtr&) {
-          if (camera) camera->trigger();
-        });
-    return topics + ", trigger " + trigger_.getTopic();
+    for (const auto& in : p.inputs) topics += ", trigger " + in.topic;
+    return topics;
   }
   bool listened() const override { return topics_.listened(); }
   void publish(const car_sim::Output& out, NodeContext& node) override {
@@ -37,7 +31,6 @@ class TriggeredCameraAdapter : public Adapter {
 
  private:
   CameraTopics topics_;
-  ros::Subscriber trigger_;
 };
 
 }  // namespace

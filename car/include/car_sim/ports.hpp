@@ -1,0 +1,121 @@
+// Typed ports: the inputs a plug-in kind declares, as a small closed set of sample types that mirror the ROS
+// message families (Twist, Wrench, JointTrajectory, a pose target, a trigger). Each port carries its topic and
+// namespace, resolved once in the core from the kind's schema; a skin (the ROS bridge) subscribes by sample type
+// and hands every value to World::command, which checks it once. No ROS headers.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <array>
+#include <cstdint>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "car_sim/state.hpp"
+
+namespace car_sim {
+
+// ---- input samples ----------------------------------------------------------------------------------------
+
+// A body twist command: linear [m/s] and angular [rad/s], in the robot's base frame.
+struct Twist {
+  Eigen::Vector3d linear = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular = Eigen::Vector3d::Zero();
+};
+
+struct TrajectoryPoint {
+  std::vector<double> positions;  // [rad] or [m], one per joint name
+  double time_from_start = 0.0;   // [s]; upstream uses it as the wait after this point
+};
+
+struct JointTrajectory {
+  std::vector<std::string> joint_names;
+  std::vector<TrajectoryPoint> points;
+  double start = 0.0;    // [s] sim time of the first point (earlier: now)
+  std::string frame_id;  // the header's frame ("" = none), as written
+};
+
+// A pose target, world frame.
+struct PoseCommand {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+};
+
+// A bare event (std_msgs/Empty): e.g. render one camera frame.
+struct Trigger {};
+
+// One value for an input port; its alternative must match the port's type.
+using Command = std::variant<Twist, Wrench, JointTrajectory, PoseCommand, Trigger>;
+
+enum class InputType { Twist, Wrench, JointTrajectory, Pose, Trigger };
+
+// The components of a Twist a port reads; the others are dropped before the value is checked.
+enum TwistAxes : uint32_t {
+  kLinearX = 1u << 0, kLinearY = 1u << 1, kLinearZ = 1u << 2,
+  kAngularX = 1u << 3, kAngularY = 1u << 4, kAngularZ = 1u << 5,
+  kAllAxes = 63u,
+};
+
+// An input of one plug-in instance, resolved.
+struct InputPort {
+  std::string name;           // the kind's name for it, e.g. "cmd_vel"
+  InputType type = InputType::Twist;
+  std::string topic;          // absolute ("/ns/cmd_vel"); "" = not a topic (a Pose read from TF, a missing topic)
+  std::string frame;          // Pose from TF: the target's frame, read relative to parent_frame
+  std::string parent_frame;
+  uint32_t queue = 1;         // the subscriber's queue length, as upstream
+  uint32_t axes = kAllAxes;   // Twist: the components the kind reads
+};
+
+// What became of one command.
+struct CommandResult {
+  bool accepted = true;  // it passed the world's checks and went to the plug-in
+  std::string reason;    // rejected: why ("a non-finite value (linear.x nan, angular.z 0)")
+  // Accepted or not, what the skin should log, as upstream logs it (a point skipped, an unknown joint).
+  struct Note {
+    bool error = false;  // an error (else a warning)
+    std::string text;
+  };
+  std::vector<Note> notes;
+};
+
+// ---- output ports -----------------------------------------------------------------------------------------
+
+// The sample families of outputs with a port (more kinds move onto ports one family at a time): a pose and twist
+// (Odometry), joint states (JointStates), and the child links' frames relative to their parents from those joints
+// (JointTransforms, TF only). An output hands its samples over through Output::odometry_sample and
+// Output::joint_states_sample.
+enum class SampleType { Odometry, JointStates, JointTransforms };
+
+// A pose with a twist: a frame in its parent frame, and the velocity of its origin.
+struct OdometrySample {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d linear = Eigen::Vector3d::Zero();   // [m/s]
+  Eigen::Vector3d angular = Eigen::Vector3d::Zero();  // [rad/s]
+};
+
+// Whether a sample's transform also goes out on TF, before or after its message (as each upstream file orders it).
+enum class TfOrder { None, Before, After };
+
+// An output of one plug-in instance, resolved.
+struct OutputPort {
+  std::string name;            // the kind's name for it, e.g. "odom"
+  SampleType type = SampleType::Odometry;
+  std::string topic;           // absolute; "" = no message (an Odometry port may still send its TF)
+  uint32_t queue = 1;          // the publisher's queue length, as upstream
+  std::string ns;              // the plug-in's namespace: where a ROS skin looks tf_prefix up (gazebo_ros resolveTF)
+  std::string frame;           // header.frame_id as written (a ROS skin prefixes it with tf_prefix)
+  std::string child_frame;     // child_frame_id as written
+  // false: no tf_prefix; the frame only loses its leading '/'s and the child frame stays as written (p3d)
+  bool tf_prefix = true;
+  TfOrder tf = TfOrder::None;  // Odometry: also the transform frame -> child_frame
+  std::array<double, 6> pose_covariance{};   // the diagonal (x, y, z, roll, pitch, yaw)
+  std::array<double, 6> twist_covariance{};
+};
+
+// A topic of a plug-in: an absolute name stays, another goes under the namespace ("" = global).
+std::string resolve_topic(const std::string& ns, const std::string& topic);
+
+// What a command's messages are called in the skins' log lines ("cmd_vel", "wrench", ...).
+const char* command_noun(InputType type);
+
+}  // namespace car_sim

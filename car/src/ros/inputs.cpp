@@ -1,0 +1,137 @@
+// The input half of the ROS bridge: ROS messages -> car_sim::Command, by sample type.
+#include "inputs.hpp"
+
+#include <geometry_msgs/Twist.h>
+#include <geometry_msgs/Wrench.h>
+#include <std_msgs/Empty.h>
+#include <trajectory_msgs/JointTrajectory.h>
+
+#include "conversions.hpp"
+
+namespace car_ros {
+
+// One input port of one plug-in instance, and what its messages need: the names to command, the subscriber.
+struct InputPorts::Port {
+  std::string robot, plugin;
+  car_sim::InputPort port;
+  NodeContext* node = nullptr;
+  ros::Subscriber sub;
+  // a Pose read from TF: its own buffer and listener; a failed lookup is logged once until one succeeds again
+  std::unique_ptr<tf2_ros::Buffer> buffer;
+  std::unique_ptr<tf2_ros::TransformListener> listener;
+  bool tf_failing = false;
+  std::chrono::steady_clock::time_point last_warning;
+
+  // Hands one value to the world and logs what came of it.
+  void command(car_sim::Command value) {
+    const car_sim::CommandResult r = node->world().command(robot, plugin, port.name, std::move(value));
+    if (!r.accepted) {
+      // throttled in wall time: sim time stands still while paused and restarts at 0 after a reset
+      const auto now = std::chrono::steady_clock::now();
+      if (last_warning.time_since_epoch().count() == 0 || now - last_warning > std::chrono::seconds(1)) {
+        ROS_WARN("car: %s: %s: rejected a %s with %s", robot.c_str(), plugin.c_str(),
+                 car_sim::command_noun(port.type), r.reason.c_str());
+        last_warning = now;
+      }
+    }
+    for (const auto& n : r.notes) {
+      if (n.error)
+        ROS_ERROR("car: %s: %s", plugin.c_str(), n.text.c_str());
+      else
+        ROS_WARN("car: %s: %s", plugin.c_str(), n.text.c_str());
+    }
+  }
+};
+
+namespace {
+
+car_sim::Command from_msg(const geometry_msgs::Twist& m) {
+  car_sim::Twist t;
+  t.linear = Eigen::Vector3d(m.linear.x, m.linear.y, m.linear.z);
+  t.angular = Eigen::Vector3d(m.angular.x, m.angular.y, m.angular.z);
+  return t;
+}
+
+car_sim::Command from_msg(const geometry_msgs::Wrench& m) {
+  car_sim::Wrench w;
+  w.force = Eigen::Vector3d(m.force.x, m.force.y, m.force.z);
+  w.torque = Eigen::Vector3d(m.torque.x, m.torque.y, m.torque.z);
+  return w;
+}
+
+car_sim::Command from_msg(const trajectory_msgs::JointTrajectory& m) {
+  car_sim::JointTrajectory t;
+  t.joint_names = m.joint_names;
+  t.start = m.header.stamp.toSec();
+  t.frame_id = m.header.frame_id;
+  for (const auto& p : m.points) {
+    car_sim::TrajectoryPoint q;
+    q.positions = p.positions;
+    q.time_from_start = p.time_from_start.toSec();
+    t.points.push_back(std::move(q));
+  }
+  return t;
+}
+
+car_sim::Command from_msg(const std_msgs::Empty&) { return car_sim::Trigger{}; }
+
+// A subscriber that hands each message, converted, to the port (the callback runs on the node's thread between
+// steps).
+template <class M>
+ros::Subscriber subscribe(NodeContext& node, const std::shared_ptr<InputPorts::Port>& port) {
+  InputPorts::Port* p = port.get();
+  return node.nh().subscribe<M>(port->port.topic, port->port.queue,
+                                [p](const typename M::ConstPtr& m) { p->command(from_msg(*m)); });
+}
+
+}  // namespace
+
+std::string InputPorts::setup(const car_sim::PluginInfo& plugin, NodeContext& node) {
+  std::string topics;
+  for (const car_sim::InputPort& ip : plugin.inputs) {
+    auto p = std::make_shared<Port>();
+    p->robot = plugin.robot;
+    p->plugin = plugin.config.name;
+    p->port = ip;
+    p->node = &node;
+    using T = car_sim::InputType;
+    if (ip.type == T::Pose && ip.topic.empty()) {
+      p->buffer = std::make_unique<tf2_ros::Buffer>();
+      p->listener = std::make_unique<tf2_ros::TransformListener>(*p->buffer);
+      polled_ = true;
+    } else if (!ip.topic.empty()) {
+      switch (ip.type) {
+        case T::Twist: p->sub = subscribe<geometry_msgs::Twist>(node, p); break;
+        case T::Wrench: p->sub = subscribe<geometry_msgs::Wrench>(node, p); break;
+        case T::JointTrajectory: p->sub = subscribe<trajectory_msgs::JointTrajectory>(node, p); break;
+        case T::Trigger: p->sub = subscribe<std_msgs::Empty>(node, p); break;
+        case T::Pose: break;
+      }
+      if (p->sub) topics += (topics.empty() ? "" : ", ") + p->sub.getTopic();
+    }
+    ports_.push_back(std::move(p));
+  }
+  return topics;
+}
+
+void InputPorts::poll() {
+  for (auto& p : ports_) {
+    if (!p->buffer) continue;
+    try {
+      const geometry_msgs::TransformStamped d =
+          p->buffer->lookupTransform(p->port.parent_frame, p->port.frame, ros::Time(0));
+      geometry_msgs::Pose pose;
+      pose.position.x = d.transform.translation.x;
+      pose.position.y = d.transform.translation.y;
+      pose.position.z = d.transform.translation.z;
+      pose.orientation = d.transform.rotation;
+      p->command(car_sim::PoseCommand{from_pose(pose)});
+      p->tf_failing = false;
+    } catch (const tf2::TransformException& e) {
+      if (!p->tf_failing) ROS_ERROR("car: %s: %s", p->plugin.c_str(), e.what());
+      p->tf_failing = true;
+    }
+  }
+}
+
+}  // namespace car_ros

@@ -1,0 +1,37 @@
+// The output half of the ROS bridge for the kinds whose outputs have ports: one converter per sample type
+// (Odometry -> nav_msgs/Odometry and its TF, JointStates -> sensor_msgs/JointState, JointTransforms -> TF). Frames
+// get the tf_prefix of the port's namespace (gazebo_ros resolveTF). Names no plug-in kind.
+#pragma once
+
+#include <ros/ros.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "adapter.hpp"
+
+namespace car_ros {
+
+class OutputPorts {
+ public:
+  // Publishers for every output port of one plug-in instance; returns what it offers, for the log line.
+  std::string setup(const car_sim::PluginInfo& plugin, const car_sim::RobotInfo& robot, NodeContext& node);
+  bool empty() const { return ports_.empty(); }
+  // Someone listens to one of its topics.
+  bool listened() const;
+  // One output of the instance, on every port, in the ports' order.
+  void publish(const car_sim::Output& out, NodeContext& node);
+
+ private:
+  struct Port {
+    car_sim::OutputPort port;
+    ros::Publisher pub;
+    std::string prefix;              // tf_prefix of the port's namespace ("" = none)
+    std::string frame, child_frame;  // as published
+  };
+  std::vector<Port> ports_;
+  const car_sim::RobotModel* model_ = nullptr;
+};
+
+}  // namespace car_ros
