@@ -119,25 +119,50 @@ bool InverseMass::build(const btMultiBody& mb) {
   return true;
 }
 
+namespace {
+
+// L y = f, then L^T x = y in place (x = y), L lower triangular m x m, row major; inv: 1 / its diagonal. M > 0: m
+// known at compile time (the loops unrolled, the same operations in the same order as M = 0, which takes m).
+template <int M>
+inline void triangular_solves(const double* l, const double* inv, const double* f, double* y, int m) {
+  if (M > 0) m = M;
+  // L y = f
+#pragma GCC unroll 16
+  for (int i = 0; i < m; ++i) {
+    const double* ri = l + static_cast<size_t>(i) * m;
+    double s = f[i];
+#pragma GCC unroll 16
+    for (int k = 0; k < i; ++k) s -= ri[k] * y[k];
+    y[i] = s * inv[i];
+  }
+  // L^T x = y, by columns of L: once x_i is known, take its share out of the rows above
+#pragma GCC unroll 16
+  for (int i = m - 1; i >= 0; --i) {
+    const double* ri = l + static_cast<size_t>(i) * m;
+    const double xi = y[i] * inv[i];
+    y[i] = xi;
+#pragma GCC unroll 16
+    for (int k = 0; k < i; ++k) y[k] -= ri[k] * xi;
+  }
+}
+
+}  // namespace
+
 void InverseMass::solve(const btScalar* f, btScalar* x) const {
   const int m = n_ - off_;
   for (int i = 0; i < off_; ++i) x[i] = 0;
   btScalar* y = x + off_;
   const double* l = l_.data();
   const double* inv = inv_diag_.data();
-  // L y = f
-  for (int i = 0; i < m; ++i) {
-    const double* ri = l + static_cast<size_t>(i) * m;
-    double s = f[off_ + i];
-    for (int k = 0; k < i; ++k) s -= ri[k] * y[k];
-    y[i] = s * inv[i];
-  }
-  // L^T x = y, by columns of L: once x_i is known, take its share out of the rows above
-  for (int i = m - 1; i >= 0; --i) {
-    const double* ri = l + static_cast<size_t>(i) * m;
-    const double xi = y[i] * inv[i];
-    y[i] = xi;
-    for (int k = 0; k < i; ++k) y[k] -= ri[k] * xi;
+  // the common sizes (a floating base with 1 to 6 joints) with the size known to the compiler
+  switch (m) {
+    case 7: return triangular_solves<7>(l, inv, f + off_, y, m);
+    case 8: return triangular_solves<8>(l, inv, f + off_, y, m);
+    case 9: return triangular_solves<9>(l, inv, f + off_, y, m);
+    case 10: return triangular_solves<10>(l, inv, f + off_, y, m);
+    case 11: return triangular_solves<11>(l, inv, f + off_, y, m);
+    case 12: return triangular_solves<12>(l, inv, f + off_, y, m);
+    default: return triangular_solves<0>(l, inv, f + off_, y, m);
   }
 }
 
