@@ -113,8 +113,23 @@ class SurfaceSolver : public btMultiBodyConstraintSolver {
  private:
   // rules: the pair needs Gazebo's surface rules; else it came here only for having no friction at all
   void convert(btPersistentManifold* m, const btContactSolverInfo& info, bool rules);
+  // One side of a row for the iterations, found once per solve: a multibody's Jacobian, unit-impulse response and
+  // velocity changes (n = its 6 + dofs), or a rigid body that moves (body), or neither: no body, or Bullet's fixed
+  // solver body (no original body), whose velocity changes stay zero and add +0 to the row's sum.
+  struct Side {
+    const btScalar* jac = nullptr;
+    const btScalar* unit = nullptr;
+    btScalar* dv = nullptr;
+    int n = 0;
+    btSolverBody* body = nullptr;
+  };
+  struct RowRef {
+    Side a, b;
+  };
+  // The sides of every multibody row, and the multibodies with rows (make_refs, before the iterations).
+  void make_refs(const btContactSolverInfo& info);
   // One row (Bullet's resolveSingleConstraintRowGeneric); returns its velocity change, Bullet's residual term.
-  btScalar resolve(const btMultiBodySolverConstraint& c);
+  btScalar resolve(const btMultiBodySolverConstraint& c, const RowRef& r);
   // Adds delta to a row's impulse and its bodies' velocity changes.
   void nudge(btMultiBodySolverConstraint& c, btScalar delta);
   // The unbounded impulse change [N s] a row asks for now (nothing applied).
@@ -173,6 +188,8 @@ class SurfaceSolver : public btMultiBodyConstraintSolver {
   std::vector<CappedPoint> capped_;
   std::vector<btScalar> push_dv_;  // split velocity changes, laid out as m_data.m_deltaVelocities
   std::vector<char> circle_;       // per friction row: first of a pair solved by Coulomb's isotropic law
+  std::vector<RowRef> joint_refs_, normal_refs_, friction_refs_;  // per row of each kind (make_refs)
+  std::vector<btMultiBody*> row_bodies_;                          // the multibodies with rows, each once
 };
 
 }  // namespace physics
