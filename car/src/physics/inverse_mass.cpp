@@ -7,6 +7,35 @@
 namespace car_sim {
 namespace physics {
 
+namespace {
+
+// Cholesky of the m x m matrix in l (row major, lower triangle), in place: M = L L^T; inv: 1 / L's diagonal. false
+// if M is not positive definite. M > 0: m known at compile time (the same operations in the same order).
+template <int M>
+inline bool cholesky(double* l, double* inv, int m) {
+  if (M > 0) m = M;
+  for (int j = 0; j < m; ++j) {
+    double* rj = l + static_cast<size_t>(j) * m;
+    double d = rj[j];
+#pragma GCC unroll 16
+    for (int k = 0; k < j; ++k) d -= rj[k] * rj[k];
+    if (!(d > 0.0)) return false;
+    d = std::sqrt(d);
+    rj[j] = d;
+    for (int i = j + 1; i < m; ++i) {
+      double* ri = l + static_cast<size_t>(i) * m;
+      double s = ri[j];
+#pragma GCC unroll 16
+      for (int k = 0; k < j; ++k) s -= ri[k] * rj[k];
+      ri[j] = s / d;
+    }
+  }
+  for (int j = 0; j < m; ++j) inv[j] = 1.0 / l[static_cast<size_t>(j) * m + j];
+  return true;
+}
+
+}  // namespace
+
 bool InverseMass::build(const btMultiBody& mb) {
   mb_ = &mb;
   const int links = mb.getNumLinks();
@@ -100,23 +129,16 @@ bool InverseMass::build(const btMultiBody& mb) {
   }
 
   // Cholesky, in place: M = L L^T
-  for (int j = 0; j < m; ++j) {
-    double* rj = &l_[static_cast<size_t>(j) * m];
-    double d = rj[j];
-    for (int k = 0; k < j; ++k) d -= rj[k] * rj[k];
-    if (!(d > 0.0)) return false;
-    d = std::sqrt(d);
-    rj[j] = d;
-    for (int i = j + 1; i < m; ++i) {
-      double* ri = &l_[static_cast<size_t>(i) * m];
-      double s = ri[j];
-      for (int k = 0; k < j; ++k) s -= ri[k] * rj[k];
-      ri[j] = s / d;
-    }
-  }
   inv_diag_.resize(m);
-  for (int j = 0; j < m; ++j) inv_diag_[j] = 1.0 / l_[static_cast<size_t>(j) * m + j];
-  return true;
+  switch (m) {
+    case 7: return cholesky<7>(l_.data(), inv_diag_.data(), m);
+    case 8: return cholesky<8>(l_.data(), inv_diag_.data(), m);
+    case 9: return cholesky<9>(l_.data(), inv_diag_.data(), m);
+    case 10: return cholesky<10>(l_.data(), inv_diag_.data(), m);
+    case 11: return cholesky<11>(l_.data(), inv_diag_.data(), m);
+    case 12: return cholesky<12>(l_.data(), inv_diag_.data(), m);
+    default: return cholesky<0>(l_.data(), inv_diag_.data(), m);
+  }
 }
 
 namespace {
