@@ -219,6 +219,7 @@ void SurfaceSolver::convertContacts(btPersistentManifold** manifolds, int count,
   }
   own_ = own_rows(info);
   inverse_used_ = 0;
+  frames_used_ = 0;
   // Gazebo's default surface (max_vel 0.01 m/s, min_depth 0) on every pair Bullet's conversion sets up: each
   // point's correction capped before its rows are made, the held-back part kept for the split (solve_push)
   capped_.clear();
@@ -748,6 +749,74 @@ const InverseMass* SurfaceSolver::inverse_mass(const btMultiBody* mb) {
   return inverse_ok_[i] ? &inverse_[i] : nullptr;
 }
 
+const SurfaceSolver::ContactFrames& SurfaceSolver::contact_frames(const btMultiBody* mb) {
+  for (int i = 0; i < frames_used_; ++i)
+    if (frames_[i].mb == mb) return frames_[i];
+  if (frames_used_ == static_cast<int>(frames_.size())) frames_.emplace_back();
+  ContactFrames& f = frames_[frames_used_++];
+  f.mb = mb;
+  f.base = btMatrix3x3(mb->getWorldToBaseRot());
+  f.links.resize(mb->getNumLinks());
+  for (int i = 0; i < mb->getNumLinks(); ++i) f.links[i] = btMatrix3x3(mb->getLink(i).m_cachedRotParentToThis);
+  return f;
+}
+
+// Bullet 3.24's btMultiBody::fillConstraintJacobianMultiDof with normal_ang = 0 (fillContactJacobianMultiDof): the
+// normal and the contact point in each frame from the base out to the link, and each joint's entry from them. Bullet
+// also multiplies out the frames' rotations from the world, which no entry reads.
+void SurfaceSolver::contact_jacobian(const btMultiBody* mb, int link, const btVector3& point, const btVector3& normal,
+                                     btScalar* jac) {
+  const ContactFrames& f = contact_frames(mb);
+  const int dofs = mb->getNumDofs();
+  const btVector3 normal_ang(0, 0, 0);
+  const btVector3 p_minus_com_world = point - mb->getBasePos();
+  // omega coefficients, then v coefficients
+  const btVector3 omega = p_minus_com_world.cross(normal);
+  jac[0] = omega[0] + normal_ang[0];
+  jac[1] = omega[1] + normal_ang[1];
+  jac[2] = omega[2] + normal_ang[2];
+  jac[3] = normal[0];
+  jac[4] = normal[1];
+  jac[5] = normal[2];
+  // [m], [-], [-] in the frame of the link last visited (the base first)
+  btVector3 p_local = f.base * p_minus_com_world;
+  btVector3 n_lin = f.base * normal;
+  btVector3 n_ang = f.base * normal_ang;
+  for (int i = 6; i < 6 + dofs; ++i) jac[i] = 0;
+  if (mb->getNumLinks() == 0 || link < 0) return;
+  chain_.clear();
+  for (int l = link; l != -1; l = mb->getLink(l).m_parent) chain_.push_back(l);
+  for (int a = static_cast<int>(chain_.size()) - 1; a >= 0; --a) {
+    const int i = chain_[a];
+    const btMultibodyLink& l = mb->getLink(i);
+    const btMatrix3x3& mtx = f.links[i];
+    n_lin = mtx * n_lin;
+    n_ang = mtx * n_ang;
+    p_local = mtx * p_local - l.m_cachedRVector;
+    btScalar* r = jac + 6 + l.m_dofOffset;
+    switch (l.m_jointType) {
+      case btMultibodyLink::eRevolute:
+        r[0] = n_lin.dot(l.getAxisTop(0).cross(p_local) + l.getAxisBottom(0));
+        r[0] += n_ang.dot(l.getAxisTop(0));
+        break;
+      case btMultibodyLink::ePrismatic:
+        r[0] = n_lin.dot(l.getAxisBottom(0));
+        break;
+      case btMultibodyLink::eSpherical:
+        for (int d = 0; d < 3; ++d) r[d] = n_lin.dot(l.getAxisTop(d).cross(p_local) + l.getAxisBottom(d));
+        for (int d = 0; d < 3; ++d) r[d] += n_ang.dot(l.getAxisTop(d));
+        break;
+      case btMultibodyLink::ePlanar:
+        r[0] = n_lin.dot(l.getAxisTop(0).cross(p_local));
+        r[1] = n_lin.dot(l.getAxisBottom(1));
+        r[2] = n_lin.dot(l.getAxisBottom(2));
+        break;
+      default:
+        break;
+    }
+  }
+}
+
 void SurfaceSolver::bind(btMultiBodySolverConstraint& c, btPersistentManifold* m, btManifoldPoint& cp,
                          const btContactSolverInfo& info) {
   auto* co0 = const_cast<btCollisionObject*>(m->getBody0());
@@ -809,7 +878,7 @@ void SurfaceSolver::setup_row(btMultiBodySolverConstraint& c, const btVector3& n
                   int* jac_index) {
     reserve_side(m_data, mb, vel_index, jac_index);
     btScalar* jac = &m_data.m_jacobians[*jac_index];
-    mb->fillContactJacobianMultiDof(link, pos, n, jac, m_data.scratch_r, m_data.scratch_v, m_data.scratch_m);
+    contact_jacobian(mb, link, pos, n, jac);
     response(mb, jac, &m_data.m_deltaVelocitiesUnitImpulse[*jac_index], m_data);
   };
 

@@ -154,6 +154,15 @@ class SurfaceSolver : public btMultiBodyConstraintSolver {
   // response M^-1 J^T from the factored matrix.
   void setup_row(btMultiBodySolverConstraint& c, const btVector3& normal, btManifoldPoint& cp,
                  const btContactSolverInfo& info, btScalar& relaxation, bool friction);
+  // Bullet's fillContactJacobianMultiDof (fillConstraintJacobianMultiDof with no angular part), the same arithmetic
+  // in the same order, with the multibody's rotations made once per solve (contact_frames) instead of once per row.
+  void contact_jacobian(const btMultiBody* mb, int link, const btVector3& point, const btVector3& normal, btScalar* jac);
+  struct ContactFrames {
+    const btMultiBody* mb = nullptr;
+    btMatrix3x3 base;                // btMatrix3x3(m_baseQuat): world -> base frame
+    std::vector<btMatrix3x3> links;  // btMatrix3x3(m_cachedRotParentToThis): parent -> link frame
+  };
+  const ContactFrames& contact_frames(const btMultiBody* mb);
   // A friction row as Bullet's addMultiBodyFrictionConstraint, set up by setup_row.
   btMultiBodySolverConstraint& add_friction_row(const btVector3& dir, btPersistentManifold* m, int normal_index,
                                                 btManifoldPoint& cp, btScalar relaxation,
@@ -170,6 +179,9 @@ class SurfaceSolver : public btMultiBodyConstraintSolver {
   std::vector<InverseMass> inverse_;  // reused between solves
   int inverse_used_ = 0;
   std::vector<char> inverse_ok_;
+  std::vector<ContactFrames> frames_;  // reused between solves
+  int frames_used_ = 0;
+  std::vector<int> chain_;             // a contact Jacobian's links, child to root
   btAlignedObjectArray<btPersistentManifold*> bullet_;
   btAlignedObjectArray<btPersistentManifold*> car_;
   btAlignedObjectArray<btPersistentManifold*> frictionless_;
