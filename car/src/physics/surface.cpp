@@ -595,6 +595,19 @@ void SurfaceSolver::make_refs(const btContactSolverInfo& info) {
       const btMultiBodySolverConstraint& c = rows[i];
       out[i].a = side(c.m_multiBodyA, c.m_jacAindex, c.m_deltaVelAindex, c.m_solverBodyIdA);
       out[i].b = side(c.m_multiBodyB, c.m_jacBindex, c.m_deltaVelBindex, c.m_solverBodyIdB);
+      RowRef& r = out[i];
+      const bool still_a = !r.a.n && !r.a.body, still_b = !r.b.n && !r.b.body;
+      if (r.a.n && r.b.n) {
+        r.shape = 2;
+      } else if (r.a.n && still_b) {
+        r.shape = 1;
+      } else if (r.b.n && still_a) {
+        // the side that moves first: resolve_one reads a
+        std::swap(r.a, r.b);
+        r.shape = 1;
+      } else {
+        r.shape = 0;
+      }
     }
   };
   mark = info.m_numNonContactInnerIterations > 0;
@@ -609,7 +622,66 @@ void SurfaceSolver::make_refs(const btContactSolverInfo& info) {
 // velocity change of each side are read through the row's sides (make_refs), and the sums run in Bullet's order (no
 // reassociation, no fused multiply-add on this build), so every impulse is Bullet's to the bit. A side without a
 // moving body adds +0 to its sum, as Bullet's zero velocity changes do.
+namespace {
+
+// A row's impulse change clamped to its limits (resolveSingleConstraintRowGeneric's clamp); sets the new impulse.
+inline btScalar clamp_impulse(const btMultiBodySolverConstraint& c, btScalar delta) {
+  const btScalar sum = btScalar(c.m_appliedImpulse) + delta;
+  if (sum < c.m_lowerLimit) {
+    delta = c.m_lowerLimit - c.m_appliedImpulse;
+    c.m_appliedImpulse = c.m_lowerLimit;
+  } else if (sum > c.m_upperLimit) {
+    delta = c.m_upperLimit - c.m_appliedImpulse;
+    c.m_appliedImpulse = c.m_upperLimit;
+  } else {
+    c.m_appliedImpulse = sum;
+  }
+  return delta;
+}
+
+// resolve() for a row with one multibody side s (N = its 6 + dofs when > 0) and a side that moves nothing: the other
+// side's term is +0 and delta - (+0) = delta, so leaving it out changes no bit.
+template <int N>
+btScalar resolve_one(const btMultiBodySolverConstraint& c, const SurfaceSolver::Side& s) {
+  btScalar delta = c.m_rhs - btScalar(c.m_appliedImpulse) * c.m_cfm;
+  const btScalar dv = N > 0 ? add_dot_fixed<N>(btScalar(0), s.jac, s.dv) : add_dot(btScalar(0), s.jac, s.dv, s.n);
+  delta -= dv * c.m_jacDiagABInv;
+  delta = clamp_impulse(c, delta);
+  if (N > 0)
+    add_scaled_fixed<N>(s.dv, s.unit, delta);
+  else
+    add_scaled_n(s.dv, s.unit, delta, s.n);
+  return delta / c.m_jacDiagABInv;
+}
+
+// resolve() for a row with two multibody sides.
+btScalar resolve_two(const btMultiBodySolverConstraint& c, const SurfaceSolver::RowRef& r) {
+  btScalar delta = c.m_rhs - btScalar(c.m_appliedImpulse) * c.m_cfm;
+  const btScalar dva = add_dot_n(btScalar(0), r.a.jac, r.a.dv, r.a.n);
+  const btScalar dvb = add_dot_n(btScalar(0), r.b.jac, r.b.dv, r.b.n);
+  delta -= dva * c.m_jacDiagABInv;
+  delta -= dvb * c.m_jacDiagABInv;
+  delta = clamp_impulse(c, delta);
+  add_scaled_n(r.a.dv, r.a.unit, delta, r.a.n);
+  add_scaled_n(r.b.dv, r.b.unit, delta, r.b.n);
+  return delta / c.m_jacDiagABInv;
+}
+
+}  // namespace
+
 btScalar SurfaceSolver::resolve(const btMultiBodySolverConstraint& c, const RowRef& r) {
+  if (r.shape == 1) {
+    switch (r.a.n) {
+      case 7: return resolve_one<7>(c, r.a);
+      case 8: return resolve_one<8>(c, r.a);
+      case 9: return resolve_one<9>(c, r.a);
+      case 10: return resolve_one<10>(c, r.a);
+      case 11: return resolve_one<11>(c, r.a);
+      case 12: return resolve_one<12>(c, r.a);
+      default: return resolve_one<0>(c, r.a);
+    }
+  }
+  if (r.shape == 2) return resolve_two(c, r);
   btScalar delta = c.m_rhs - btScalar(c.m_appliedImpulse) * c.m_cfm;
   btScalar dva = 0, dvb = 0;
   if (r.a.n) {

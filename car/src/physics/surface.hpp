@@ -113,6 +113,7 @@ class SurfaceSolver : public btMultiBodyConstraintSolver {
  private:
   // rules: the pair needs Gazebo's surface rules; else it came here only for having no friction at all
   void convert(btPersistentManifold* m, const btContactSolverInfo& info, bool rules);
+ public:
   // One side of a row for the iterations, found once per solve: a multibody's Jacobian, unit-impulse response and
   // velocity changes (n = its 6 + dofs), or a rigid body that moves (body), or neither: no body, or Bullet's fixed
   // solver body (no original body), whose velocity changes stay zero and add +0 to the row's sum.
@@ -125,7 +126,10 @@ class SurfaceSolver : public btMultiBodyConstraintSolver {
   };
   struct RowRef {
     Side a, b;
+    // the row's shape: 0 any; 1 one multibody side (in a; the other side moves nothing); 2 two multibody sides
+    int shape = 0;
   };
+ private:
   // The sides of every multibody row, and the multibodies with rows (make_refs, before the iterations).
   void make_refs(const btContactSolverInfo& info);
   // One row (Bullet's resolveSingleConstraintRowGeneric); returns its velocity change, Bullet's residual term.
