@@ -7,6 +7,35 @@
 namespace car_sim {
 namespace physics {
 
+namespace {
+
+// Cholesky of the m x m matrix in l (row major, lower triangle), in place: M = L L^T; inv: 1 / L's diagonal. false
+// if M is not positive definite. M > 0: m known at compile time (the same operations in the same order).
+template <int M>
+inline bool cholesky(double* l, double* inv, int m) {
+  if (M > 0) m = M;
+  for (int j = 0; j < m; ++j) {
+    double* rj = l + static_cast<size_t>(j) * m;
+    double d = rj[j];
+#pragma GCC unroll 16
+    for (int k = 0; k < j; ++k) d -= rj[k] * rj[k];
+    if (!(d > 0.0)) return false;
+    d = std::sqrt(d);
+    rj[j] = d;
+    for (int i = j + 1; i < m; ++i) {
+      double* ri = l + static_cast<size_t>(i) * m;
+      double s = ri[j];
+#pragma GCC unroll 16
+      for (int k = 0; k < j; ++k) s -= ri[k] * rj[k];
+      ri[j] = s / d;
+    }
+  }
+  for (int j = 0; j < m; ++j) inv[j] = 1.0 / l[static_cast<size_t>(j) * m + j];
+  return true;
+}
+
+}  // namespace
+
 bool InverseMass::build(const btMultiBody& mb) {
   mb_ = &mb;
   const int links = mb.getNumLinks();
@@ -100,24 +129,46 @@ bool InverseMass::build(const btMultiBody& mb) {
   }
 
   // Cholesky, in place: M = L L^T
-  for (int j = 0; j < m; ++j) {
-    double* rj = &l_[static_cast<size_t>(j) * m];
-    double d = rj[j];
-    for (int k = 0; k < j; ++k) d -= rj[k] * rj[k];
-    if (!(d > 0.0)) return false;
-    d = std::sqrt(d);
-    rj[j] = d;
-    for (int i = j + 1; i < m; ++i) {
-      double* ri = &l_[static_cast<size_t>(i) * m];
-      double s = ri[j];
-      for (int k = 0; k < j; ++k) s -= ri[k] * rj[k];
-      ri[j] = s / d;
-    }
-  }
   inv_diag_.resize(m);
-  for (int j = 0; j < m; ++j) inv_diag_[j] = 1.0 / l_[static_cast<size_t>(j) * m + j];
-  return true;
+  switch (m) {
+    case 7: return cholesky<7>(l_.data(), inv_diag_.data(), m);
+    case 8: return cholesky<8>(l_.data(), inv_diag_.data(), m);
+    case 9: return cholesky<9>(l_.data(), inv_diag_.data(), m);
+    case 10: return cholesky<10>(l_.data(), inv_diag_.data(), m);
+    case 11: return cholesky<11>(l_.data(), inv_diag_.data(), m);
+    case 12: return cholesky<12>(l_.data(), inv_diag_.data(), m);
+    default: return cholesky<0>(l_.data(), inv_diag_.data(), m);
+  }
 }
+
+namespace {
+
+// L y = f, then L^T x = y in place (x = y), L lower triangular m x m, row major; inv: 1 / its diagonal. M > 0: m
+// known at compile time (the loops unrolled, the same operations in the same order as M = 0, which takes m).
+template <int M>
+inline void triangular_solves(const double* l, const double* inv, const double* f, double* y, int m) {
+  if (M > 0) m = M;
+  // L y = f
+#pragma GCC unroll 16
+  for (int i = 0; i < m; ++i) {
+    const double* ri = l + static_cast<size_t>(i) * m;
+    double s = f[i];
+#pragma GCC unroll 16
+    for (int k = 0; k < i; ++k) s -= ri[k] * y[k];
+    y[i] = s * inv[i];
+  }
+  // L^T x = y, by columns of L: once x_i is known, take its share out of the rows above
+#pragma GCC unroll 16
+  for (int i = m - 1; i >= 0; --i) {
+    const double* ri = l + static_cast<size_t>(i) * m;
+    const double xi = y[i] * inv[i];
+    y[i] = xi;
+#pragma GCC unroll 16
+    for (int k = 0; k < i; ++k) y[k] -= ri[k] * xi;
+  }
+}
+
+}  // namespace
 
 void InverseMass::solve(const btScalar* f, btScalar* x) const {
   const int m = n_ - off_;
@@ -125,19 +176,15 @@ void InverseMass::solve(const btScalar* f, btScalar* x) const {
   btScalar* y = x + off_;
   const double* l = l_.data();
   const double* inv = inv_diag_.data();
-  // L y = f
-  for (int i = 0; i < m; ++i) {
-    const double* ri = l + static_cast<size_t>(i) * m;
-    double s = f[off_ + i];
-    for (int k = 0; k < i; ++k) s -= ri[k] * y[k];
-    y[i] = s * inv[i];
-  }
-  // L^T x = y, by columns of L: once x_i is known, take its share out of the rows above
-  for (int i = m - 1; i >= 0; --i) {
-    const double* ri = l + static_cast<size_t>(i) * m;
-    const double xi = y[i] * inv[i];
-    y[i] = xi;
-    for (int k = 0; k < i; ++k) y[k] -= ri[k] * xi;
+  // the common sizes (a floating base with 1 to 6 joints) with the size known to the compiler
+  switch (m) {
+    case 7: return triangular_solves<7>(l, inv, f + off_, y, m);
+    case 8: return triangular_solves<8>(l, inv, f + off_, y, m);
+    case 9: return triangular_solves<9>(l, inv, f + off_, y, m);
+    case 10: return triangular_solves<10>(l, inv, f + off_, y, m);
+    case 11: return triangular_solves<11>(l, inv, f + off_, y, m);
+    case 12: return triangular_solves<12>(l, inv, f + off_, y, m);
+    default: return triangular_solves<0>(l, inv, f + off_, y, m);
   }
 }
 

@@ -19,6 +19,47 @@ inline btScalar add_dot(btScalar acc, const btScalar* a, const btScalar* b, int 
   return acc;
 }
 
+// add_dot and the velocity update of a row side for the common sizes of a multibody (6 + dofs) known to the
+// compiler: the loops unrolled, the same operations in the same order.
+template <int N>
+inline btScalar add_dot_fixed(btScalar acc, const btScalar* a, const btScalar* b) {
+#pragma GCC unroll 16
+  for (int i = 0; i < N; ++i) acc += a[i] * b[i];
+  return acc;
+}
+
+inline btScalar add_dot_n(btScalar acc, const btScalar* a, const btScalar* b, int n) {
+  switch (n) {
+    case 7: return add_dot_fixed<7>(acc, a, b);
+    case 8: return add_dot_fixed<8>(acc, a, b);
+    case 9: return add_dot_fixed<9>(acc, a, b);
+    case 10: return add_dot_fixed<10>(acc, a, b);
+    case 11: return add_dot_fixed<11>(acc, a, b);
+    case 12: return add_dot_fixed<12>(acc, a, b);
+    default: return add_dot(acc, a, b, n);
+  }
+}
+
+// v += u * delta, element by element
+template <int N>
+inline void add_scaled_fixed(btScalar* v, const btScalar* u, btScalar delta) {
+#pragma GCC unroll 16
+  for (int i = 0; i < N; ++i) v[i] += u[i] * delta;
+}
+
+inline void add_scaled_n(btScalar* v, const btScalar* u, btScalar delta, int n) {
+  switch (n) {
+    case 7: return add_scaled_fixed<7>(v, u, delta);
+    case 8: return add_scaled_fixed<8>(v, u, delta);
+    case 9: return add_scaled_fixed<9>(v, u, delta);
+    case 10: return add_scaled_fixed<10>(v, u, delta);
+    case 11: return add_scaled_fixed<11>(v, u, delta);
+    case 12: return add_scaled_fixed<12>(v, u, delta);
+    default:
+      for (int i = 0; i < n; ++i) v[i] += u[i] * delta;
+  }
+}
+
 // A multibody side of a new row in the solver's arrays, as Bullet's row builders make it: the multibody's block of
 // velocity changes (one per multibody and solve, made on its first row) and the row's Jacobian and response slots.
 // Returns the multibody's 6 + dofs.
@@ -178,6 +219,7 @@ void SurfaceSolver::convertContacts(btPersistentManifold** manifolds, int count,
   }
   own_ = own_rows(info);
   inverse_used_ = 0;
+  frames_used_ = 0;
   // Gazebo's default surface (max_vel 0.01 m/s, min_depth 0) on every pair Bullet's conversion sets up: each
   // point's correction capped before its rows are made, the held-back part kept for the split (solve_push)
   capped_.clear();
@@ -412,6 +454,7 @@ btScalar SurfaceSolver::solveGroupCacheFriendlyIterations(btCollisionObject** bo
                                                           btTypedConstraint** constraints, int num_constraints,
                                                           const btContactSolverInfo& info, btIDebugDraw* draw) {
   own_iterations_ = false;
+  make_refs(info);
   const btScalar r = btMultiBodyConstraintSolver::solveGroupCacheFriendlyIterations(
       bodies, num_bodies, manifolds, num_manifolds, constraints, num_constraints, info, draw);
   if (!own_iterations_) return r;
@@ -522,37 +565,136 @@ void SurfaceSolver::nudge(btMultiBodySolverConstraint& c, btScalar delta) {
   }
 }
 
+// The sides of every multibody row (pointers into the solver's arrays, which keep their size through the
+// iterations), and the multibodies with rows, each once.
+void SurfaceSolver::make_refs(const btContactSolverInfo& info) {
+  btScalar* jac = m_data.m_jacobians.size() ? &m_data.m_jacobians[0] : nullptr;
+  btScalar* unit = m_data.m_deltaVelocitiesUnitImpulse.size() ? &m_data.m_deltaVelocitiesUnitImpulse[0] : nullptr;
+  btScalar* dv = m_data.m_deltaVelocities.size() ? &m_data.m_deltaVelocities[0] : nullptr;
+  row_bodies_.clear();
+  // the bodies Bullet's iteration marks: those of the joint rows (when it solves them) and of the contact rows (a
+  // friction row's are its normal row's)
+  bool mark = false;
+  auto side = [&](btMultiBody* mb, int jac_index, int vel_index, int body_id) {
+    Side r;
+    if (mb) {
+      r.n = mb->getNumDofs() + 6;
+      r.jac = jac + jac_index;
+      r.unit = unit + jac_index;
+      r.dv = dv + vel_index;
+      if (mark && std::find(row_bodies_.begin(), row_bodies_.end(), mb) == row_bodies_.end()) row_bodies_.push_back(mb);
+    } else if (body_id >= 0) {
+      btSolverBody& b = m_tmpSolverBodyPool[body_id];
+      if (b.m_originalBody) r.body = &b;
+    }
+    return r;
+  };
+  auto refs = [&](const btMultiBodyConstraintArray& rows, std::vector<RowRef>& out) {
+    out.resize(rows.size());
+    for (int i = 0; i < rows.size(); ++i) {
+      const btMultiBodySolverConstraint& c = rows[i];
+      out[i].a = side(c.m_multiBodyA, c.m_jacAindex, c.m_deltaVelAindex, c.m_solverBodyIdA);
+      out[i].b = side(c.m_multiBodyB, c.m_jacBindex, c.m_deltaVelBindex, c.m_solverBodyIdB);
+      RowRef& r = out[i];
+      const bool still_a = !r.a.n && !r.a.body, still_b = !r.b.n && !r.b.body;
+      if (r.a.n && r.b.n) {
+        r.shape = 2;
+      } else if (r.a.n && still_b) {
+        r.shape = 1;
+      } else if (r.b.n && still_a) {
+        // the side that moves first: resolve_one reads a
+        std::swap(r.a, r.b);
+        r.shape = 1;
+      } else {
+        r.shape = 0;
+      }
+    }
+  };
+  mark = info.m_numNonContactInnerIterations > 0;
+  refs(m_multiBodyNonContactConstraints, joint_refs_);
+  mark = true;
+  refs(m_multiBodyNormalContactConstraints, normal_refs_);
+  mark = false;
+  refs(m_multiBodyFrictionContactConstraints, friction_refs_);
+}
+
 // Bullet's row update, written for the compiler: the Jacobian, the unit-impulse response and the accumulated
-// velocity change of each side are read through raw pointers, and the sums run in Bullet's order (no reassociation,
-// no fused multiply-add on this build), so every impulse is Bullet's to the bit.
-btScalar SurfaceSolver::resolve(const btMultiBodySolverConstraint& c) {
+// velocity change of each side are read through the row's sides (make_refs), and the sums run in Bullet's order (no
+// reassociation, no fused multiply-add on this build), so every impulse is Bullet's to the bit. A side without a
+// moving body adds +0 to its sum, as Bullet's zero velocity changes do.
+namespace {
+
+// A row's impulse change clamped to its limits (resolveSingleConstraintRowGeneric's clamp); sets the new impulse.
+inline btScalar clamp_impulse(const btMultiBodySolverConstraint& c, btScalar delta) {
+  const btScalar sum = btScalar(c.m_appliedImpulse) + delta;
+  if (sum < c.m_lowerLimit) {
+    delta = c.m_lowerLimit - c.m_appliedImpulse;
+    c.m_appliedImpulse = c.m_lowerLimit;
+  } else if (sum > c.m_upperLimit) {
+    delta = c.m_upperLimit - c.m_appliedImpulse;
+    c.m_appliedImpulse = c.m_upperLimit;
+  } else {
+    c.m_appliedImpulse = sum;
+  }
+  return delta;
+}
+
+// resolve() for a row with one multibody side s (N = its 6 + dofs when > 0) and a side that moves nothing: the other
+// side's term is +0 and delta - (+0) = delta, so leaving it out changes no bit.
+template <int N>
+btScalar resolve_one(const btMultiBodySolverConstraint& c, const SurfaceSolver::Side& s) {
+  btScalar delta = c.m_rhs - btScalar(c.m_appliedImpulse) * c.m_cfm;
+  const btScalar dv = N > 0 ? add_dot_fixed<N>(btScalar(0), s.jac, s.dv) : add_dot(btScalar(0), s.jac, s.dv, s.n);
+  delta -= dv * c.m_jacDiagABInv;
+  delta = clamp_impulse(c, delta);
+  if (N > 0)
+    add_scaled_fixed<N>(s.dv, s.unit, delta);
+  else
+    add_scaled_n(s.dv, s.unit, delta, s.n);
+  return delta / c.m_jacDiagABInv;
+}
+
+// resolve() for a row with two multibody sides.
+btScalar resolve_two(const btMultiBodySolverConstraint& c, const SurfaceSolver::RowRef& r) {
+  btScalar delta = c.m_rhs - btScalar(c.m_appliedImpulse) * c.m_cfm;
+  const btScalar dva = add_dot_n(btScalar(0), r.a.jac, r.a.dv, r.a.n);
+  const btScalar dvb = add_dot_n(btScalar(0), r.b.jac, r.b.dv, r.b.n);
+  delta -= dva * c.m_jacDiagABInv;
+  delta -= dvb * c.m_jacDiagABInv;
+  delta = clamp_impulse(c, delta);
+  add_scaled_n(r.a.dv, r.a.unit, delta, r.a.n);
+  add_scaled_n(r.b.dv, r.b.unit, delta, r.b.n);
+  return delta / c.m_jacDiagABInv;
+}
+
+}  // namespace
+
+btScalar SurfaceSolver::resolve(const btMultiBodySolverConstraint& c, const RowRef& r) {
+  if (r.shape == 1) {
+    switch (r.a.n) {
+      case 7: return resolve_one<7>(c, r.a);
+      case 8: return resolve_one<8>(c, r.a);
+      case 9: return resolve_one<9>(c, r.a);
+      case 10: return resolve_one<10>(c, r.a);
+      case 11: return resolve_one<11>(c, r.a);
+      case 12: return resolve_one<12>(c, r.a);
+      default: return resolve_one<0>(c, r.a);
+    }
+  }
+  if (r.shape == 2) return resolve_two(c, r);
   btScalar delta = c.m_rhs - btScalar(c.m_appliedImpulse) * c.m_cfm;
   btScalar dva = 0, dvb = 0;
-  btSolverBody* body_a = nullptr;
-  btSolverBody* body_b = nullptr;
-  const btScalar* jac = m_data.m_jacobians.size() ? &m_data.m_jacobians[0] : nullptr;
-  const btScalar* unit = m_data.m_deltaVelocitiesUnitImpulse.size() ? &m_data.m_deltaVelocitiesUnitImpulse[0] : nullptr;
-  btScalar* dv = m_data.m_deltaVelocities.size() ? &m_data.m_deltaVelocities[0] : nullptr;
-  int na = 0, nb = 0;
-  if (c.m_multiBodyA) {
-    na = c.m_multiBodyA->getNumDofs() + 6;
-    const btScalar* j = jac + c.m_jacAindex;
-    const btScalar* v = dv + c.m_deltaVelAindex;
-    dva = add_dot(dva, j, v, na);
-  } else if (c.m_solverBodyIdA >= 0) {
-    body_a = &m_tmpSolverBodyPool[c.m_solverBodyIdA];
-    dva += c.m_contactNormal1.dot(body_a->internalGetDeltaLinearVelocity()) +
-           c.m_relpos1CrossNormal.dot(body_a->internalGetDeltaAngularVelocity());
+  if (r.a.n) {
+    dva = add_dot_n(dva, r.a.jac, r.a.dv, r.a.n);
+  } else if (r.a.body) {
+    dva += c.m_contactNormal1.dot(r.a.body->internalGetDeltaLinearVelocity()) +
+           c.m_relpos1CrossNormal.dot(r.a.body->internalGetDeltaAngularVelocity());
   }
-  if (c.m_multiBodyB) {
-    nb = c.m_multiBodyB->getNumDofs() + 6;
-    const btScalar* j = jac + c.m_jacBindex;
-    const btScalar* v = dv + c.m_deltaVelBindex;
-    dvb = add_dot(dvb, j, v, nb);
-  } else if (c.m_solverBodyIdB >= 0) {
-    body_b = &m_tmpSolverBodyPool[c.m_solverBodyIdB];
-    dvb += c.m_contactNormal2.dot(body_b->internalGetDeltaLinearVelocity()) +
-           c.m_relpos2CrossNormal.dot(body_b->internalGetDeltaAngularVelocity());
+  if (r.b.n) {
+    dvb = add_dot_n(dvb, r.b.jac, r.b.dv, r.b.n);
+  } else if (r.b.body) {
+    dvb += c.m_contactNormal2.dot(r.b.body->internalGetDeltaLinearVelocity()) +
+           c.m_relpos2CrossNormal.dot(r.b.body->internalGetDeltaAngularVelocity());
   }
   delta -= dva * c.m_jacDiagABInv;
   delta -= dvb * c.m_jacDiagABInv;
@@ -566,20 +708,14 @@ btScalar SurfaceSolver::resolve(const btMultiBodySolverConstraint& c) {
   } else {
     c.m_appliedImpulse = sum;
   }
-  if (c.m_multiBodyA) {
-    const btScalar* u = unit + c.m_jacAindex;
-    btScalar* v = dv + c.m_deltaVelAindex;
-    for (int i = 0; i < na; ++i) v[i] += u[i] * delta;
-  } else if (body_a) {
-    body_a->internalApplyImpulse(c.m_contactNormal1 * body_a->internalGetInvMass(), c.m_angularComponentA, delta);
-  }
-  if (c.m_multiBodyB) {
-    const btScalar* u = unit + c.m_jacBindex;
-    btScalar* v = dv + c.m_deltaVelBindex;
-    for (int i = 0; i < nb; ++i) v[i] += u[i] * delta;
-  } else if (body_b) {
-    body_b->internalApplyImpulse(c.m_contactNormal2 * body_b->internalGetInvMass(), c.m_angularComponentB, delta);
-  }
+  if (r.a.n)
+    add_scaled_n(r.a.dv, r.a.unit, delta, r.a.n);
+  else if (r.a.body)
+    r.a.body->internalApplyImpulse(c.m_contactNormal1 * r.a.body->internalGetInvMass(), c.m_angularComponentA, delta);
+  if (r.b.n)
+    add_scaled_n(r.b.dv, r.b.unit, delta, r.b.n);
+  else if (r.b.body)
+    r.b.body->internalApplyImpulse(c.m_contactNormal2 * r.b.body->internalGetInvMass(), c.m_angularComponentB, delta);
   return delta / c.m_jacDiagABInv;
 }
 
@@ -601,36 +737,27 @@ btScalar SurfaceSolver::solveSingleIteration(int iteration, btCollisionObject** 
     residual = btSequentialImpulseConstraintSolver::solveSingleIteration(
         iteration, bodies, num_bodies, manifolds, num_manifolds, constraints, num_constraints, info, draw);
 
+  // Every multibody with a row is marked as having no updated positions (Bullet marks each row's bodies as it
+  // solves the row; nothing reads the mark before the positions are integrated)
+  for (btMultiBody* mb : row_bodies_) mb->setPosUpdated(false);
   // joint rows (motors, limits), forwards and backwards on alternate iterations
   btScalar joints = 0;
   const int nj = m_multiBodyNonContactConstraints.size();
   for (int k = 0; k < info.m_numNonContactInnerIterations; ++k) {
     joints = 0;
     for (int j = 0; j < nj; ++j) {
-      const btMultiBodySolverConstraint& c = m_multiBodyNonContactConstraints[iteration & 1 ? j : nj - 1 - j];
-      const btScalar r = resolve(c);
+      const int row = iteration & 1 ? j : nj - 1 - j;
+      const btScalar r = resolve(m_multiBodyNonContactConstraints[row], joint_refs_[row]);
       joints = btMax(joints, r * r);
-      if (c.m_multiBodyA) c.m_multiBodyA->setPosUpdated(false);
-      if (c.m_multiBodyB) c.m_multiBodyB->setPosUpdated(false);
     }
   }
   residual = btMax(residual, joints);
-  if (iteration >= info.m_numIterations) {
-    // contact rows are not solved past the iteration count (Bullet's rule); their residual counts as 0
-    for (int j = 0; j < m_multiBodyNormalContactConstraints.size(); ++j) {
-      const btMultiBodySolverConstraint& c = m_multiBodyNormalContactConstraints[j];
-      if (c.m_multiBodyA) c.m_multiBodyA->setPosUpdated(false);
-      if (c.m_multiBodyB) c.m_multiBodyB->setPosUpdated(false);
-    }
-    return residual;
-  }
+  // contact rows are not solved past the iteration count (Bullet's rule); their residual counts as 0
+  if (iteration >= info.m_numIterations) return residual;
   // normal rows
   for (int j = 0; j < m_multiBodyNormalContactConstraints.size(); ++j) {
-    const btMultiBodySolverConstraint& c = m_multiBodyNormalContactConstraints[j];
-    const btScalar r = resolve(c);
+    const btScalar r = resolve(m_multiBodyNormalContactConstraints[j], normal_refs_[j]);
     residual = btMax(residual, r * r);
-    if (c.m_multiBodyA) c.m_multiBodyA->setPosUpdated(false);
-    if (c.m_multiBodyB) c.m_multiBodyB->setPosUpdated(false);
   }
   // friction rows, each bounded by its coefficient times its normal row's impulse
   for (int j = 0; j < m_multiBodyFrictionContactConstraints.size(); ++j) {
@@ -639,10 +766,8 @@ btScalar SurfaceSolver::solveSingleIteration(int iteration, btCollisionObject** 
     if (normal > btScalar(0)) {
       c.m_lowerLimit = -(c.m_friction * normal);
       c.m_upperLimit = c.m_friction * normal;
-      if (c.m_multiBodyA) c.m_multiBodyA->setPosUpdated(false);
-      if (c.m_multiBodyB) c.m_multiBodyB->setPosUpdated(false);
       if (j >= static_cast<int>(circle_.size()) || !circle_[j]) {
-        const btScalar r = resolve(c);
+        const btScalar r = resolve(c, friction_refs_[j]);
         residual = btMax(residual, r * r);
         continue;
       }
@@ -694,6 +819,74 @@ const InverseMass* SurfaceSolver::inverse_mass(const btMultiBody* mb) {
   const int i = inverse_used_++;
   inverse_ok_[i] = inverse_[i].build(*mb);
   return inverse_ok_[i] ? &inverse_[i] : nullptr;
+}
+
+const SurfaceSolver::ContactFrames& SurfaceSolver::contact_frames(const btMultiBody* mb) {
+  for (int i = 0; i < frames_used_; ++i)
+    if (frames_[i].mb == mb) return frames_[i];
+  if (frames_used_ == static_cast<int>(frames_.size())) frames_.emplace_back();
+  ContactFrames& f = frames_[frames_used_++];
+  f.mb = mb;
+  f.base = btMatrix3x3(mb->getWorldToBaseRot());
+  f.links.resize(mb->getNumLinks());
+  for (int i = 0; i < mb->getNumLinks(); ++i) f.links[i] = btMatrix3x3(mb->getLink(i).m_cachedRotParentToThis);
+  return f;
+}
+
+// Bullet 3.24's btMultiBody::fillConstraintJacobianMultiDof with normal_ang = 0 (fillContactJacobianMultiDof): the
+// normal and the contact point in each frame from the base out to the link, and each joint's entry from them. Bullet
+// also multiplies out the frames' rotations from the world, which no entry reads.
+void SurfaceSolver::contact_jacobian(const btMultiBody* mb, int link, const btVector3& point, const btVector3& normal,
+                                     btScalar* jac) {
+  const ContactFrames& f = contact_frames(mb);
+  const int dofs = mb->getNumDofs();
+  const btVector3 normal_ang(0, 0, 0);
+  const btVector3 p_minus_com_world = point - mb->getBasePos();
+  // omega coefficients, then v coefficients
+  const btVector3 omega = p_minus_com_world.cross(normal);
+  jac[0] = omega[0] + normal_ang[0];
+  jac[1] = omega[1] + normal_ang[1];
+  jac[2] = omega[2] + normal_ang[2];
+  jac[3] = normal[0];
+  jac[4] = normal[1];
+  jac[5] = normal[2];
+  // [m], [-], [-] in the frame of the link last visited (the base first)
+  btVector3 p_local = f.base * p_minus_com_world;
+  btVector3 n_lin = f.base * normal;
+  btVector3 n_ang = f.base * normal_ang;
+  for (int i = 6; i < 6 + dofs; ++i) jac[i] = 0;
+  if (mb->getNumLinks() == 0 || link < 0) return;
+  chain_.clear();
+  for (int l = link; l != -1; l = mb->getLink(l).m_parent) chain_.push_back(l);
+  for (int a = static_cast<int>(chain_.size()) - 1; a >= 0; --a) {
+    const int i = chain_[a];
+    const btMultibodyLink& l = mb->getLink(i);
+    const btMatrix3x3& mtx = f.links[i];
+    n_lin = mtx * n_lin;
+    n_ang = mtx * n_ang;
+    p_local = mtx * p_local - l.m_cachedRVector;
+    btScalar* r = jac + 6 + l.m_dofOffset;
+    switch (l.m_jointType) {
+      case btMultibodyLink::eRevolute:
+        r[0] = n_lin.dot(l.getAxisTop(0).cross(p_local) + l.getAxisBottom(0));
+        r[0] += n_ang.dot(l.getAxisTop(0));
+        break;
+      case btMultibodyLink::ePrismatic:
+        r[0] = n_lin.dot(l.getAxisBottom(0));
+        break;
+      case btMultibodyLink::eSpherical:
+        for (int d = 0; d < 3; ++d) r[d] = n_lin.dot(l.getAxisTop(d).cross(p_local) + l.getAxisBottom(d));
+        for (int d = 0; d < 3; ++d) r[d] += n_ang.dot(l.getAxisTop(d));
+        break;
+      case btMultibodyLink::ePlanar:
+        r[0] = n_lin.dot(l.getAxisTop(0).cross(p_local));
+        r[1] = n_lin.dot(l.getAxisBottom(1));
+        r[2] = n_lin.dot(l.getAxisBottom(2));
+        break;
+      default:
+        break;
+    }
+  }
 }
 
 void SurfaceSolver::bind(btMultiBodySolverConstraint& c, btPersistentManifold* m, btManifoldPoint& cp,
@@ -757,7 +950,7 @@ void SurfaceSolver::setup_row(btMultiBodySolverConstraint& c, const btVector3& n
                   int* jac_index) {
     reserve_side(m_data, mb, vel_index, jac_index);
     btScalar* jac = &m_data.m_jacobians[*jac_index];
-    mb->fillContactJacobianMultiDof(link, pos, n, jac, m_data.scratch_r, m_data.scratch_v, m_data.scratch_m);
+    contact_jacobian(mb, link, pos, n, jac);
     response(mb, jac, &m_data.m_deltaVelocitiesUnitImpulse[*jac_index], m_data);
   };
 

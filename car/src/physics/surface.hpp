@@ -113,8 +113,27 @@ class SurfaceSolver : public btMultiBodyConstraintSolver {
  private:
   // rules: the pair needs Gazebo's surface rules; else it came here only for having no friction at all
   void convert(btPersistentManifold* m, const btContactSolverInfo& info, bool rules);
+ public:
+  // One side of a row for the iterations, found once per solve: a multibody's Jacobian, unit-impulse response and
+  // velocity changes (n = its 6 + dofs), or a rigid body that moves (body), or neither: no body, or Bullet's fixed
+  // solver body (no original body), whose velocity changes stay zero and add +0 to the row's sum.
+  struct Side {
+    const btScalar* jac = nullptr;
+    const btScalar* unit = nullptr;
+    btScalar* dv = nullptr;
+    int n = 0;
+    btSolverBody* body = nullptr;
+  };
+  struct RowRef {
+    Side a, b;
+    // the row's shape: 0 any; 1 one multibody side (in a; the other side moves nothing); 2 two multibody sides
+    int shape = 0;
+  };
+ private:
+  // The sides of every multibody row, and the multibodies with rows (make_refs, before the iterations).
+  void make_refs(const btContactSolverInfo& info);
   // One row (Bullet's resolveSingleConstraintRowGeneric); returns its velocity change, Bullet's residual term.
-  btScalar resolve(const btMultiBodySolverConstraint& c);
+  btScalar resolve(const btMultiBodySolverConstraint& c, const RowRef& r);
   // Adds delta to a row's impulse and its bodies' velocity changes.
   void nudge(btMultiBodySolverConstraint& c, btScalar delta);
   // The unbounded impulse change [N s] a row asks for now (nothing applied).
@@ -139,6 +158,15 @@ class SurfaceSolver : public btMultiBodyConstraintSolver {
   // response M^-1 J^T from the factored matrix.
   void setup_row(btMultiBodySolverConstraint& c, const btVector3& normal, btManifoldPoint& cp,
                  const btContactSolverInfo& info, btScalar& relaxation, bool friction);
+  // Bullet's fillContactJacobianMultiDof (fillConstraintJacobianMultiDof with no angular part), the same arithmetic
+  // in the same order, with the multibody's rotations made once per solve (contact_frames) instead of once per row.
+  void contact_jacobian(const btMultiBody* mb, int link, const btVector3& point, const btVector3& normal, btScalar* jac);
+  struct ContactFrames {
+    const btMultiBody* mb = nullptr;
+    btMatrix3x3 base;                // btMatrix3x3(m_baseQuat): world -> base frame
+    std::vector<btMatrix3x3> links;  // btMatrix3x3(m_cachedRotParentToThis): parent -> link frame
+  };
+  const ContactFrames& contact_frames(const btMultiBody* mb);
   // A friction row as Bullet's addMultiBodyFrictionConstraint, set up by setup_row.
   btMultiBodySolverConstraint& add_friction_row(const btVector3& dir, btPersistentManifold* m, int normal_index,
                                                 btManifoldPoint& cp, btScalar relaxation,
@@ -155,6 +183,9 @@ class SurfaceSolver : public btMultiBodyConstraintSolver {
   std::vector<InverseMass> inverse_;  // reused between solves
   int inverse_used_ = 0;
   std::vector<char> inverse_ok_;
+  std::vector<ContactFrames> frames_;  // reused between solves
+  int frames_used_ = 0;
+  std::vector<int> chain_;             // a contact Jacobian's links, child to root
   btAlignedObjectArray<btPersistentManifold*> bullet_;
   btAlignedObjectArray<btPersistentManifold*> car_;
   btAlignedObjectArray<btPersistentManifold*> frictionless_;
@@ -173,6 +204,8 @@ class SurfaceSolver : public btMultiBodyConstraintSolver {
   std::vector<CappedPoint> capped_;
   std::vector<btScalar> push_dv_;  // split velocity changes, laid out as m_data.m_deltaVelocities
   std::vector<char> circle_;       // per friction row: first of a pair solved by Coulomb's isotropic law
+  std::vector<RowRef> joint_refs_, normal_refs_, friction_refs_;  // per row of each kind (make_refs)
+  std::vector<btMultiBody*> row_bodies_;                          // the multibodies with rows, each once
 };
 
 }  // namespace physics
