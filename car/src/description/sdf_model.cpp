@@ -461,11 +461,18 @@ SdfRobot load_sdf_model_string(const std::string& xml, const std::string& source
   if (!root || std::string(root->Name()) != "sdf")
     throw LoadError(source_name, root ? root->GetLineNum() : 0, root ? root->Name() : "",
                     "root element is not <sdf>; is this an SDF model?");
+  detail::check_sdf_version(root, source_name);
   check_includes(root, source_name, base_dir);
   sdf::Root sroot;
   bool rewritten = false;  // SDF 1.4's bare-text material scripts and Gazebo 11's pixel format names, read as Gazebo 11 did (validate.hpp)
-  const sdf::Errors errors = sroot.LoadSdfString(detail::read_as_gazebo11(xml, &rewritten),
-                                                 parser_config(base_dir.empty() ? std::string() : base_dir + "/x.sdf"));
+  sdf::Errors errors;
+  // libsdformat throws on some inputs (an included file's bad version: std::invalid_argument); refused, never escaped
+  try {
+    errors = sroot.LoadSdfString(detail::read_as_gazebo11(xml, &rewritten),
+                                 parser_config(base_dir.empty() ? std::string() : base_dir + "/x.sdf"));
+  } catch (const std::exception& e) {
+    throw LoadError(source_name, 0, "sdf", std::string("libsdformat failed: ") + e.what());
+  }
   if (!errors.empty()) fail_with(source_name, errors);
   const sdf::Model* model = sroot.Model();
   Eigen::Isometry3d world_pose = Eigen::Isometry3d::Identity();

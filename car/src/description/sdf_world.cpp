@@ -275,7 +275,13 @@ WorldDescription load_world_file(const std::string& path) {
   bool rewritten = false;
   const std::string gz11 = detail::read_as_gazebo11(text, &rewritten);
   sdf::Root root;
-  const sdf::Errors errors = rewritten ? root.LoadSdfString(gz11, parser_config(path)) : root.Load(path, parser_config(path));
+  sdf::Errors errors;
+  // libsdformat throws on some inputs (an included file's bad version: std::invalid_argument); refused, never escaped
+  try {
+    errors = rewritten ? root.LoadSdfString(gz11, parser_config(path)) : root.Load(path, parser_config(path));
+  } catch (const std::exception& e) {
+    throw LoadError(path, 0, "sdf", std::string("libsdformat failed: ") + e.what());
+  }
   if (!errors.empty()) fail_with(path, errors);
   WorldDescription d = convert(root, path);
   load_meshes(&d, path.find('/') == std::string::npos ? "." : path.substr(0, path.rfind('/')));
@@ -286,7 +292,12 @@ WorldDescription load_world_string(const std::string& xml, const std::string& so
   detail::prevalidate_sdf(xml, source_name, "");  // validate.cpp
   bool rewritten = false;
   sdf::Root root;
-  const sdf::Errors errors = root.LoadSdfString(detail::read_as_gazebo11(xml, &rewritten), parser_config(""));
+  sdf::Errors errors;
+  try {
+    errors = root.LoadSdfString(detail::read_as_gazebo11(xml, &rewritten), parser_config(""));
+  } catch (const std::exception& e) {
+    throw LoadError(source_name, 0, "sdf", std::string("libsdformat failed: ") + e.what());
+  }
   if (!errors.empty()) fail_with(source_name, errors);
   WorldDescription d = convert(root, source_name);
   load_meshes(&d, "");

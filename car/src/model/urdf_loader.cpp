@@ -474,6 +474,15 @@ void parse_transmissions(const tinyxml2::XMLElement* robot, RobotModel* model) {
 
 }  // namespace
 
+namespace {
+// The line of <joint name="NAME"> (0 when there is none).
+int loader_line_of_joint(const tinyxml2::XMLElement* robot, const std::string& name) {
+  for (auto* e = robot->FirstChildElement("joint"); e; e = e->NextSiblingElement("joint"))
+    if (e->Attribute("name") && name == e->Attribute("name")) return e->GetLineNum();
+  return 0;
+}
+}  // namespace
+
 RobotModel load_urdf_string(const std::string& xml, const std::string& source_name, const LoadOptions& options) {
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
@@ -508,6 +517,20 @@ RobotModel load_urdf_string(const std::string& xml, const std::string& source_na
   Loader loader(source_name, &model);
   loader.index_lines(robot);
   loader.convert(*u, robot);
+  // urdfdom takes a <link> without a name for one named "", which no body can stand for (found by fuzz_urdf)
+  if (!model.find_link(model.root_link))
+    throw LoadError(source_name, robot->GetLineNum(), "robot", "its root link has no name (every <link> needs a name)");
+  // a joint whose child is its own parent, or a loop, leaves links that hang from no root (found by fuzz_urdf)
+  for (const auto& j : model.joints) {
+    const int line = loader_line_of_joint(robot, j.name);
+    if (j.parent == j.child)
+      throw LoadError(source_name, line, "joint[" + j.name + "]",
+                      "its parent and child are the same link '" + j.child + "'");
+    // urdfdom and car's XML reader may read a name differently (an unescaped '&': found by fuzz_urdf)
+    for (const std::string* l : {&j.parent, &j.child})
+      if (!model.find_link(*l))
+        throw LoadError(source_name, line, "joint[" + j.name + "]", "names link '" + *l + "', which the model does not hold");
+  }
   loader.check_colours(robot, "");
   loader.check_fixed_axes(robot);
   loader.check_inertials();

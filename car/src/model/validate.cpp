@@ -541,9 +541,20 @@ std::string model_sdf_file(const std::string& folder) {
   return folder + "/" + best;
 }
 
+void check_sdf_version(const tinyxml2::XMLElement* root, const std::string& source) {
+  const char* v = root ? root->Attribute("version") : nullptr;
+  if (!v) return;
+  const std::string t = v;
+  bool ok = !t.empty() && t.front() != '.' && t.back() != '.';
+  for (size_t i = 0; ok && i < t.size(); ++i)
+    ok = std::isdigit(static_cast<unsigned char>(t[i])) || (t[i] == '.' && t[i + 1] != '.');
+  if (!ok) throw LoadError(source, root->GetLineNum(), "sdf", "version '" + t + "' is not an SDF version (such as 1.6)");
+}
+
 void prevalidate_sdf(const std::string& xml, const std::string& source, const std::string& base_dir) {
   tinyxml2::XMLDocument doc;
   parse_sdf(xml, source, &doc);
+  check_sdf_version(doc.RootElement(), source);
   check_sdf_numbers(doc.RootElement(), source);
   for (auto* w = doc.RootElement()->FirstChildElement("world"); w; w = w->NextSiblingElement("world")) {
     int n = 0;

@@ -54,6 +54,9 @@ void drop_degenerate_collisions(RobotModel* m);
 // found, acyclic and at most limits::kIncludeDepthMax deep (each included file checked the same way). base_dir:
 // where relative URIs resolve ("" for text). Throws LoadError naming file, line, element and reason.
 void prevalidate_sdf(const std::string& xml, const std::string& source, const std::string& base_dir);
+// <sdf version="..."> must be digits and dots ("1.6"): libsdformat throws std::invalid_argument on others (found by
+// fuzz_sdf_world and fuzz_sdf_model). A missing version is left to libsdformat, which refuses it.
+void check_sdf_version(const tinyxml2::XMLElement* root, const std::string& source);
 
 // A DOCTYPE that declares entities is refused (LoadError at "!DOCTYPE"), so no entity is ever expanded (billion
 // laughs) or fetched (external).

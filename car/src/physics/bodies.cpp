@@ -78,6 +78,8 @@ BodyTree build_bodies(const RobotModel& m) {
     std::vector<Eigen::Matrix3d> is;
     for (const auto& link : b.links) {
       const Link* l = m.find_link(link);
+      // a joint naming a link the model does not hold; the loader refuses the cases known to reach here
+      if (!l) throw LoadError(m.source, 0, "link[" + link + "]", "is named by a joint but is not in the model");
       if (l->inertial) accumulate(*l->inertial, t.link_in_top[link], &ms, &cs, &is);
       // a lumped link's shapes keep its own surface settings (RobotModel::surface)
       for (const auto& s : l->collisions) {

@@ -454,7 +454,11 @@ class BulletRobot : public Robot {
     // Hard stops on revolute and prismatic joints; Coulomb joint friction as a zero-velocity motor.
     for (const auto& j : model_.joints) {
       if (j.type == JointType::Fixed) continue;
-      const int link = joint_link_.at(j.name);
+      const auto found = joint_link_.find(j.name);
+      // a joint that hangs from no body of the tree (a loop the loader did not catch)
+      if (found == joint_link_.end())
+        throw LoadError(model_.source, 0, "joint[" + j.name + "]", "is not connected to the root link '" + model_.root_link + "'");
+      const int link = found->second;
       const bool bounded = j.type == JointType::Revolute || j.type == JointType::Prismatic;
       if (bounded && j.limits && j.limits->lower < j.limits->upper)
         add_constraint(new btMultiBodyJointLimitConstraint(mb, link, j.limits->lower, j.limits->upper));
