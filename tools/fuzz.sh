@@ -5,6 +5,8 @@
 # Usage: tools/fuzz.sh [--smoke] [--cov] [SECONDS] [TARGET...]
 #   --smoke    60 s per target (CI's smoke); SECONDS per target otherwise (default 600)
 #   --no-build run what .ws-asan/ holds
+#   --regressions  fuzz nothing: run every input that once broke the rule (test/fuzz/regressions/TARGET/) through its
+#              target once, deterministic (CI's gate); exits 1 when one breaks it again
 #   --recheck  only re-measure the timeouts already in test/fuzz/out/ (see recheck below), fuzz nothing
 #   --save     afterwards, minimise each corpus (-merge=1) into test/fuzz/corpus/TARGET/ (committed)
 #   --cov      afterwards, the lines of src/model and src/description the corpora execute (llvm-cov)
@@ -18,13 +20,14 @@ cd "$ROOT/car"
 source "$ROOT/tools/sanitizers/workspace.sh"
 ensure_clang || { echo "sanitizers: could not install clang 14"; exit 1; }
 ALL=(urdf sdf_world sdf_model spawn ros_control flatten)
-secs=600 cov=0 build=1 recheck_only=0 save=0 targets=()
+secs=600 cov=0 build=1 recheck_only=0 save=0 regressions_only=0 targets=()
 for a in "$@"; do
   case "$a" in
     --smoke) secs=60 ;;
     --cov) cov=1 ;;
     --no-build) build=0 ;;
     --recheck) recheck_only=1 ;;
+    --regressions) regressions_only=1 ;;
     --save) save=1 ;;
     [0-9]*) secs="$a" ;;
     *) targets+=("$a") ;;
@@ -50,6 +53,24 @@ elif [ ! -f "$WS/build/Makefile" ]; then
     -DCATKIN_ENABLE_TESTING=ON -DCAR_SANITIZE=address,undefined -DCAR_FUZZ=ON -j"$JOBS" "${fuzz_targets[@]}" > build.log 2>&1) || { tail -n 40 "$WS/build.log"; exit 1; }
 else
   make -C "$WS/build" -j"$JOBS" "${fuzz_targets[@]}" > "$WS/build.log" 2>&1 || { tail -n 40 "$WS/build.log"; exit 1; }
+fi
+
+# ---- the regressions alone: each input once, in a fresh process per target -----------------------------------------
+if [ $regressions_only -eq 1 ]; then
+  broken=0
+  for t in "${targets[@]}"; do
+    inputs=(test/fuzz/regressions/"$t"/*)
+    [ -e "${inputs[0]}" ] || continue
+    if LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+        "$BIN/fuzz_$t" -timeout=30 -rss_limit_mb=2048 "${inputs[@]}" > "$WS/regressions-$t.log" 2>&1; then
+      echo "fuzz: $t: ${#inputs[@]} regression input(s) keep the rule"
+    else
+      broken=1
+      grep -m3 -B2 -A12 'ERROR\|RULE BROKEN\|runtime error' "$WS/regressions-$t.log"
+      echo "fuzz: $t: FAILED: a regression input breaks the rule again ($WS/regressions-$t.log)"
+    fi
+  done
+  exit $broken
 fi
 
 # ---- seeds: test/data's robots, worlds and models, the hostile corpus (test/data/bad) -------------------------
