@@ -474,15 +474,6 @@ void parse_transmissions(const tinyxml2::XMLElement* robot, RobotModel* model) {
 
 }  // namespace
 
-namespace {
-// The line of <joint name="NAME"> (0 when there is none).
-int loader_line_of_joint(const tinyxml2::XMLElement* robot, const std::string& name) {
-  for (auto* e = robot->FirstChildElement("joint"); e; e = e->NextSiblingElement("joint"))
-    if (e->Attribute("name") && name == e->Attribute("name")) return e->GetLineNum();
-  return 0;
-}
-}  // namespace
-
 RobotModel load_urdf_string(const std::string& xml, const std::string& source_name, const LoadOptions& options) {
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
@@ -522,7 +513,7 @@ RobotModel load_urdf_string(const std::string& xml, const std::string& source_na
     throw LoadError(source_name, robot->GetLineNum(), "robot", "its root link has no name (every <link> needs a name)");
   // a joint whose child is its own parent, or a loop, leaves links that hang from no root (found by fuzz_urdf)
   for (const auto& j : model.joints) {
-    const int line = loader_line_of_joint(robot, j.name);
+    const int line = loader.line_of("joint", j.name);
     if (j.parent == j.child)
       throw LoadError(source_name, line, "joint[" + j.name + "]",
                       "its parent and child are the same link '" + j.child + "'");

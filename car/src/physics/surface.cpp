@@ -698,16 +698,7 @@ btScalar SurfaceSolver::resolve(const btMultiBodySolverConstraint& c, const RowR
   }
   delta -= dva * c.m_jacDiagABInv;
   delta -= dvb * c.m_jacDiagABInv;
-  const btScalar sum = btScalar(c.m_appliedImpulse) + delta;
-  if (sum < c.m_lowerLimit) {
-    delta = c.m_lowerLimit - c.m_appliedImpulse;
-    c.m_appliedImpulse = c.m_lowerLimit;
-  } else if (sum > c.m_upperLimit) {
-    delta = c.m_upperLimit - c.m_appliedImpulse;
-    c.m_appliedImpulse = c.m_upperLimit;
-  } else {
-    c.m_appliedImpulse = sum;
-  }
+  delta = clamp_impulse(c, delta);
   if (r.a.n)
     add_scaled_n(r.a.dv, r.a.unit, delta, r.a.n);
   else if (r.a.body)
