@@ -83,11 +83,12 @@ def flatten(path: str) -> ET.ElementTree:
     except ET.ParseError as e:
         raise WorldError(path, '', 'malformed XML: %s' % e)
     try:
-        text = _core.flatten_world(path)
+        # bytes in the input's encoding, which its declaration names
+        data = _core.flatten_world(path)
     except _core.LoadError as e:
         raise WorldError(e.file, e.element, e.reason)
     parser = ET.XMLParser(target=ET.TreeBuilder())
-    parser.feed(text.encode('utf-8'))
+    parser.feed(data)
     tree = ET.ElementTree(parser.close())
     ET.indent(tree, space='  ')
     return tree

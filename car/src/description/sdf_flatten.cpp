@@ -3,6 +3,7 @@
 // loader's; python/car/world_tools.py reads the text this returns and writes it out.
 #include <tinyxml2.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -261,6 +262,28 @@ void apply_state(tinyxml2::XMLElement* world) {
   }
 }
 
+// The encoding the document's declaration names (' encoding="ISO-8859-1"'), or "" when it names none or one that is
+// not a plain name (a letter, then letters, digits, '.', '_', '-').
+std::string declared_encoding(const tinyxml2::XMLDocument& doc) {
+  const tinyxml2::XMLNode* first = doc.FirstChild();
+  const tinyxml2::XMLDeclaration* decl = first ? first->ToDeclaration() : nullptr;
+  if (!decl || !decl->Value()) return "";
+  const std::string v = decl->Value();
+  size_t i = v.find("encoding");
+  if (i == std::string::npos) return "";
+  i = v.find_first_not_of(" \t\r\n", i + 8);
+  if (i == std::string::npos || v[i] != '=') return "";
+  i = v.find_first_not_of(" \t\r\n", i + 1);
+  if (i == std::string::npos || (v[i] != '"' && v[i] != '\'')) return "";
+  const size_t end = v.find(v[i], i + 1);
+  if (end == std::string::npos) return "";
+  const std::string name = v.substr(i + 1, end - i - 1);
+  if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) return "";
+  for (const char c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_' && c != '-') return "";
+  return " encoding=\"" + name + "\"";
+}
+
 }  // namespace
 
 std::string flatten_world_file(const std::string& path) {
@@ -284,7 +307,9 @@ std::string flatten_world_file(const std::string& path) {
     bool Visit(const tinyxml2::XMLUnknown&) override { return true; }
     bool Visit(const tinyxml2::XMLDeclaration&) override { return true; }
   } printer;
-  printer.PushDeclaration("xml version=\"1.0\"");
+  // the input's declared encoding is kept (tinyxml2 passes the bytes through untranslated), so the text reads back
+  // as the input did: an ISO-8859-1 world stays ISO-8859-1
+  printer.PushDeclaration(("xml version=\"1.0\"" + declared_encoding(doc)).c_str());
   root->Accept(&printer);
   return printer.CStr();
 }

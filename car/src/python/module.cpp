@@ -482,7 +482,8 @@ PYBIND11_MODULE(_core, m) {
       "flatten_world",
       [m](const std::string& path) {
         try {
-          return flatten_world_file(path);
+          // bytes: the text keeps the input's encoding, named in its declaration
+          return py::bytes(flatten_world_file(path));
         } catch (const LoadError& e) {
           py::object type = m.attr("LoadError");
           py::object err = type(e.what());
@@ -494,7 +495,7 @@ PYBIND11_MODULE(_core, m) {
         }
       },
       py::arg("path"),
-      "A world file as one self-contained SDF text: includes expanded (the loader's include rule, at most 32 deep), "
+      "A world file as one self-contained SDF text (bytes, in the encoding its declaration names): includes expanded (the loader's include rule, at most 32 deep), "
       "nested models hoisted as 'parent::child', <state> applied. Raises LoadError (with file, element, reason).");
 
   m.def("load_world_file", [](const std::string& path) { return world_dict(load_world_file(path)); }, py::arg("path"),

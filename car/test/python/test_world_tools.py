@@ -63,6 +63,15 @@ def test_simulator_reads_the_world_as_the_flattener_writes_it(tmp_path):
     assert models_of(_core.load_world_file(INCLUDES)) == models_of(_core.load_world_file(flat(INCLUDES, tmp_path)))
 
 
+def test_flatten_keeps_the_declared_encoding(tmp_path):
+    # 'm\xe9' in ISO-8859-1 is the byte 0xE9; read as UTF-8 it would be malformed
+    world = tmp_path / 'latin1.world'
+    world.write_bytes(b'<?xml version="1.0" encoding="ISO-8859-1"?>\n<sdf version="1.6"><world name="w">'
+                      b'<model name="m\xe9"><static>true</static><link name="l"/></model></world></sdf>\n')
+    assert _core.flatten_world(str(world)).startswith(b'<?xml version="1.0" encoding="ISO-8859-1"?>')
+    assert [m.get('name') for m in world_tools.flatten(str(world)).getroot().iter('model')] == ['m\u00e9']
+
+
 def test_state_poses_are_applied_and_the_block_dropped(tmp_path):
     world = ET.parse(flat(os.path.join(ROOT, 'worlds', 'box_house.world'), tmp_path)).getroot().find('world')
     assert world.find('state') is None
