@@ -325,9 +325,22 @@ def ros_node(seconds, kind='plain'):
         def cpu():
             return proc_cpu(node, node), proc_cpu(node), sum(proc_cpu(p) for p in others)
 
+        def program(pid):
+            """A process's program name: the node's __name, else its executable's file name."""
+            try:
+                argv = open('/proc/%d/cmdline' % pid, 'rb').read().decode(errors='replace').split('\0')
+            except OSError:
+                return str(pid)
+            names = [a[len('__name:='):] for a in argv if a.startswith('__name:=')]
+            script = [a for a in argv[1:2] if argv[0].endswith('python3')]
+            return names[0] if names else os.path.basename((script or argv)[0])
+
+        names = {p: program(p) for p in others}
+        each0 = {p: proc_cpu(p) for p in others}
         s0, w0, c0 = sim_now(), time.perf_counter(), cpu()
         time.sleep(seconds)
         s1, w1, c1 = sim_now(), time.perf_counter(), cpu()
+        each1 = {p: proc_cpu(p) for p in others}
         listen.send_signal(signal.SIGINT)
         got = listen.communicate(timeout=30)[0].split()
         counts = dict(zip(got[0::2], (int(x) for x in got[1::2])))
@@ -339,6 +352,11 @@ def ros_node(seconds, kind='plain'):
         print('ros_node%s: CPU per sim second: stepping thread %.1f ms, the node\'s other threads %.1f ms, the launch\'s '
               'other nodes and the subscriber %.1f ms' % (tag, 1e3 * step / sim,
                                                          1e3 * (proc - step) / sim, 1e3 * rest / sim), file=sys.stderr)
+        # each of the other processes (the master, rosout, robot_state_publisher, world_markers, the static
+        # transform, the subscriber), so what the second core spends is named
+        print('ros_node%s: CPU per sim second of each other process: %s' % (tag, ', '.join(
+            '%s %.2f ms' % (names[p], 1e3 * (each1[p] - each0[p]) / sim) for p in others if each1[p] > 0)),
+            file=sys.stderr)
         if cloud and counts.get('clouds', 0) == 0:
             raise RuntimeError('bench_listen received no cloud')
         steps = sim / 0.001
