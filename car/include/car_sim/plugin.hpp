@@ -45,6 +45,8 @@ struct Output {
   // Its samples for the output ports' converters (include/car_sim/ports.hpp): false / nullptr when it has none.
   virtual bool odometry_sample(OdometrySample* s) const { return false; }
   virtual const std::vector<JointState>* joint_states_sample() const { return nullptr; }
+  // ---- cameras: frame `frame` of the output (a multicamera has one per side); false when it has none
+  virtual bool image_sample(size_t frame, ImageSample* s) const { return false; }
 };
 using OutputPtr = std::unique_ptr<Output>;
 using OutputQueue = std::vector<OutputPtr>;

@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <variant>
@@ -84,13 +85,47 @@ struct CommandResult {
 // (Odometry), joint states (JointStates), and the child links' frames relative to their parents from those joints
 // (JointTransforms, TF only). An output hands its samples over through Output::odometry_sample and
 // Output::joint_states_sample.
-enum class SampleType { Odometry, JointStates, JointTransforms };
+enum class SampleType {
+  Odometry, JointStates, JointTransforms,
+  // cameras (ImageSample, below): the colour image, its camera_info, the depth image, the organized depth cloud
+  Image, CameraInfo, DepthImage, DepthCloud,
+};
 
 // A pose with a twist: a frame in its parent frame, and the velocity of its origin.
 struct OdometrySample {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   Eigen::Vector3d linear = Eigen::Vector3d::Zero();   // [m/s]
   Eigen::Vector3d angular = Eigen::Vector3d::Zero();  // [rad/s]
+};
+
+// ---- cameras -----------------------------------------------------------------------------------------------
+
+// One camera frame, as views of the arrays of the output that holds it (Output::image_sample): the bridge keeps
+// that output alive until the frame's messages are serialised, straight from these arrays. A part the plug-in left
+// out (Plugin::set_parts) is null.
+struct ImageSample {
+  int width = 0, height = 0;           // [px]
+  double f = 0, cx = 0, cy = 0;        // [px] focal length, principal point
+  std::string encoding;                // "rgb8", "bgr8", "mono8", "rgb16", "mono16"
+  uint32_t step = 0;                   // [bytes] per image row
+  const uint8_t* image = nullptr;      // step x height bytes, top row first; 16-bit channels little-endian
+  size_t image_bytes = 0;
+  const float* depth = nullptr;        // [m] width x height, along the optical axis; NaN where there is none
+  const float* points = nullptr;       // x y z per pixel [m], optical frame (z forward, x right, y down)
+  const uint8_t* point_rgb = nullptr;  // r g b per pixel
+};
+
+// What an Image, CameraInfo, DepthImage or DepthCloud port needs besides its topic and frame, resolved from the
+// kind's schema (gazebo_ros_camera_utils' keys).
+struct ImagePortSettings {
+  size_t frame = 0;                     // which frame of the output (a multicamera's side)
+  // CameraInfo: plumb_bob D (k1 k2 t1 t2 k3), P[3] = -f * baseline [m], one message per `period` [s] (0: with
+  // every frame); with_image: only while the frame's Image port has subscribers (the triggered camera)
+  std::array<double, 5> distortion{};
+  double baseline = 0.0;
+  double period = 0.0;
+  bool with_image = false;
+  bool millimetres = false;             // DepthImage: 16UC1 [mm] (0 where there is no depth), else 32FC1 [m]
 };
 
 // Whether a sample's transform also goes out on TF, before or after its message (as each upstream file orders it).
@@ -110,6 +145,12 @@ struct OutputPort {
   TfOrder tf = TfOrder::None;  // Odometry: also the transform frame -> child_frame
   std::array<double, 6> pose_covariance{};   // the diagonal (x, y, z, roll, pitch, yaw)
   std::array<double, 6> twist_covariance{};
+  // Lazy parts (Plugin::set_parts): the parts of the output this port's messages need while it has subscribers;
+  // idle_parts: what a port that needs no part of its own (camera_info) asks to be made while no subscribed port
+  // takes one. No port with either: every part.
+  uint32_t parts = 0;
+  uint32_t idle_parts = 0;
+  ImagePortSettings image;     // the camera sample types
 };
 
 // A topic of a plug-in: an absolute name stays, another goes under the namespace ("" = global).

@@ -224,7 +224,7 @@ void SimNode::publish_outputs() {
     if (it->second.adapter)
       it->second.adapter->publish_owned(std::move(o), *this);
     else
-      it->second.outputs->publish(*o, *this);
+      it->second.outputs->publish(std::move(o), *this);
     if (it->second.polled) it->second.polled->poll();
   }
   // lazy plug-ins compute only while someone listens; look every 50 steps
@@ -273,7 +273,7 @@ void SimNode::update_activity() {
         p.active = want;
       }
       // only the parts someone takes are made (a depth camera's depth image without its colour and cloud)
-      const uint32_t parts = p.adapter ? p.adapter->parts() : ~0u;
+      const uint32_t parts = p.adapter ? p.adapter->parts() : p.outputs->parts();
       if (parts != p.parts) {
         world_->plugin(name, p.info.config.name)->set_parts(parts);
         p.parts = parts;

@@ -1,4 +1,4 @@
-// The output half of the ROS bridge: samples -> messages, by sample type.
+// The output half of the ROS bridge: samples -> messages, by sample type (the camera types: outputs_image.cpp).
 #include "outputs.hpp"
 
 #include <nav_msgs/Odometry.h>
@@ -61,9 +61,19 @@ std::string OutputPorts::setup(const car_sim::PluginInfo& plugin, const car_sim:
         add("joint states " + op.topic);
         break;
       case T::JointTransforms: add("wheel TF"); break;
+      case T::Image:
+      case T::CameraInfo:
+      case T::DepthImage:
+      case T::DepthCloud: add(setup_image(p, node)); break;
     }
     ports_.push_back(std::move(p));
   }
+  // ---- cameras: a camera_info sent only with its frame's image finds that image's port
+  for (Port& p : ports_)
+    if (p.port.type == T::CameraInfo && p.port.image.with_image)
+      for (size_t i = 0; i < ports_.size(); ++i)
+        if (ports_[i].port.type == T::Image && ports_[i].port.image.frame == p.port.image.frame)
+          p.image_of = static_cast<int>(i);
   set_debug_level(plugin.config);
   return offers;
 }
@@ -74,7 +84,20 @@ bool OutputPorts::listened() const {
   return false;
 }
 
-void OutputPorts::publish(const car_sim::Output& out, NodeContext& node) {
+uint32_t OutputPorts::parts() const {
+  uint32_t taken = 0, idle = 0;
+  bool any = false;
+  for (const Port& p : ports_) {
+    any = any || p.port.parts != 0 || p.port.idle_parts != 0;
+    idle |= p.port.idle_parts;
+    if (p.pub && p.pub.getNumSubscribers() > 0) taken |= p.port.parts;
+  }
+  if (!any) return ~0u;
+  return taken ? taken : idle;
+}
+
+void OutputPorts::publish(std::shared_ptr<const car_sim::Output> owned, NodeContext& node) {
+  const car_sim::Output& out = *owned;
   const ros::Time stamp = node.stamp(out.tick);
   car_sim::OdometrySample o;
   const bool has_odometry = out.odometry_sample(&o);
@@ -82,7 +105,7 @@ void OutputPorts::publish(const car_sim::Output& out, NodeContext& node) {
   const std::vector<car_sim::JointState>* sample = out.joint_states_sample();
   const std::vector<car_sim::JointState>& joints = sample ? *sample : kNone;
   using T = car_sim::SampleType;
-  for (const Port& p : ports_) {
+  for (Port& p : ports_) {
     switch (p.port.type) {
       case T::Odometry: {
         if (!has_odometry) break;
@@ -138,6 +161,10 @@ void OutputPorts::publish(const car_sim::Output& out, NodeContext& node) {
           node.send_tf(std::move(w));
         }
         break;
+      case T::Image:
+      case T::CameraInfo:
+      case T::DepthImage:
+      case T::DepthCloud: publish_image(p, owned, stamp, node); break;
     }
   }
 }

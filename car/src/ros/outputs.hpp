@@ -1,6 +1,7 @@
 // The output half of the ROS bridge for the kinds whose outputs have ports: one converter per sample type
-// (Odometry -> nav_msgs/Odometry and its TF, JointStates -> sensor_msgs/JointState, JointTransforms -> TF). Frames
-// get the tf_prefix of the port's namespace (gazebo_ros resolveTF). Names no plug-in kind.
+// (Odometry -> nav_msgs/Odometry and its TF, JointStates -> sensor_msgs/JointState, JointTransforms -> TF; the
+// camera types in outputs_image.cpp). Frames get the tf_prefix of the port's namespace (gazebo_ros resolveTF).
+// Names no plug-in kind.
 #pragma once
 
 #include <ros/ros.h>
@@ -20,8 +21,11 @@ class OutputPorts {
   bool empty() const { return ports_.empty(); }
   // Someone listens to one of its topics.
   bool listened() const;
-  // One output of the instance, on every port, in the ports' order.
-  void publish(const car_sim::Output& out, NodeContext& node);
+  // The parts of the output its subscribed ports take (Plugin::set_parts; all bits: every part).
+  uint32_t parts() const;
+  // One output of the instance, on every port, in the ports' order; its ownership, for the messages serialised
+  // straight from its arrays on the publishing thread (the camera types), which keep it until they are sent.
+  void publish(std::shared_ptr<const car_sim::Output> out, NodeContext& node);
 
  private:
   struct Port {
@@ -29,7 +33,15 @@ class OutputPorts {
     ros::Publisher pub;
     std::string prefix;              // tf_prefix of the port's namespace ("" = none)
     std::string frame, child_frame;  // as published
+    // ---- cameras
+    ros::Time last;       // CameraInfo: when the last one went out
+    int image_of = -1;    // CameraInfo with_image: the index of its frame's Image port
   };
+  // ---- cameras (outputs_image.cpp): the publisher of a port of a camera sample type, with the log's words; one
+  // frame's message on it
+  std::string setup_image(Port& p, NodeContext& node);
+  void publish_image(Port& p, const std::shared_ptr<const car_sim::Output>& out, const ros::Time& stamp,
+                     NodeContext& node);
   std::vector<Port> ports_;
   const car_sim::RobotModel* model_ = nullptr;
 };

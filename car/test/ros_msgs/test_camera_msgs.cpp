@@ -1,4 +1,4 @@
-// The cameras' messages serialised straight from the core's arrays (src/ros/adapters/camera_msgs.hpp) give the
+// The cameras' messages serialised straight from the core's arrays (src/ros/image_msgs.hpp) give the
 // same bytes on the wire as the sensor_msgs messages camera_image(), depth_image() and point_cloud() build.
 #include <gtest/gtest.h>
 
@@ -7,7 +7,8 @@
 #include <limits>
 #include <vector>
 
-#include "camera_msgs.hpp"
+#include "camera/camera.hpp"
+#include "image_msgs.hpp"
 
 namespace {
 
@@ -40,7 +41,8 @@ std::vector<uint8_t> bytes(const ros::SerializedMessage& m) { return {m.buf.get(
 template <class View>
 View view(const std::shared_ptr<car_sim::CameraOut>& o) {
   View v;
-  v.out = o;
+  v.owner = o;
+  o->image_sample(0, &v.sample);
   v.frame = "support_depth";
   v.stamp = ros::Time(1, 234000000);
   return v;
@@ -50,14 +52,14 @@ TEST(CameraMsgs, ImageViewIsTheImageMessage) {
   for (const char* enc : {"rgb8", "bgr8", "mono8"}) {
     auto o = frame(enc);
     const auto v = view<car_ros::ImageView>(o);
-    EXPECT_EQ(bytes(serializeMessage(v)), bytes(serializeMessage(car_ros::camera_image(*o, v.frame, v.stamp)))) << enc;
+    EXPECT_EQ(bytes(serializeMessage(v)), bytes(serializeMessage(car_ros::camera_image(v.sample, v.frame, v.stamp)))) << enc;
   }
 }
 
 TEST(CameraMsgs, DepthViewIsTheDepthImageInMetres) {
   auto o = frame("rgb8");
   const auto v = view<car_ros::DepthView>(o);
-  EXPECT_EQ(bytes(serializeMessage(v)), bytes(serializeMessage(car_ros::depth_image(*o, false, v.frame, v.stamp))));
+  EXPECT_EQ(bytes(serializeMessage(v)), bytes(serializeMessage(car_ros::depth_image(v.sample, false, v.frame, v.stamp))));
 }
 
 TEST(CameraMsgs, DepthViewIsTheDepthImageInMillimetres) {
@@ -65,7 +67,7 @@ TEST(CameraMsgs, DepthViewIsTheDepthImageInMillimetres) {
   auto v = view<car_ros::DepthView>(o);
   v.millimetres = true;
   const std::vector<uint8_t> b = bytes(serializeMessage(v));
-  EXPECT_EQ(b, bytes(serializeMessage(car_ros::depth_image(*o, true, v.frame, v.stamp))));
+  EXPECT_EQ(b, bytes(serializeMessage(car_ros::depth_image(v.sample, true, v.frame, v.stamp))));
   // the last pixel, 1.5 + 0.25 * 11 = 4.25 m, is 4250 mm in the last two bytes (little-endian)
   EXPECT_EQ(b[b.size() - 2] | (b[b.size() - 1] << 8), 4250);
 }
@@ -74,7 +76,7 @@ TEST(CameraMsgs, CloudViewIsThePointCloud) {
   auto o = frame("rgb8");
   const auto v = view<car_ros::CloudView>(o);
   const std::vector<uint8_t> b = bytes(serializeMessage(v));
-  EXPECT_EQ(b, bytes(serializeMessage(car_ros::point_cloud(*o, v.frame, v.stamp))));
+  EXPECT_EQ(b, bytes(serializeMessage(car_ros::point_cloud(v.sample, v.frame, v.stamp))));
   // not dense: pixel 5 has no hit (is_dense is the last byte)
   EXPECT_EQ(b.back(), 0);
   // the last point's rgb: (110, 20, 30) as 0x006E141E, 16 bytes into its 32, which end 1 byte before the end
@@ -88,7 +90,7 @@ TEST(CameraMsgs, DenseCloudWhenEveryPixelHits) {
   o->points[3 * 5 + 2] = 2.0f;
   const auto v = view<car_ros::CloudView>(o);
   const std::vector<uint8_t> b = bytes(serializeMessage(v));
-  EXPECT_EQ(b, bytes(serializeMessage(car_ros::point_cloud(*o, v.frame, v.stamp))));
+  EXPECT_EQ(b, bytes(serializeMessage(car_ros::point_cloud(v.sample, v.frame, v.stamp))));
   EXPECT_EQ(b.back(), 1);
 }
 

@@ -503,6 +503,89 @@ void CameraOut::visit(FieldVisitor& v) const {
   if (!point_rgb.empty()) v.array("point_rgb", point_rgb.data(), {H, W, 3});
 }
 
+bool CameraOut::image_sample(size_t frame, ImageSample* s) const {
+  if (frame != 0) return false;
+  s->width = width;
+  s->height = height;
+  s->f = f;
+  s->cx = cx;
+  s->cy = cy;
+  s->encoding = encoding;
+  s->step = static_cast<uint32_t>(step());
+  s->image = image.empty() ? nullptr : image.data();
+  s->image_bytes = image.size();
+  s->depth = depth.empty() ? nullptr : depth.data();
+  s->points = points.empty() ? nullptr : points.data();
+  s->point_rgb = point_rgb.empty() ? nullptr : point_rgb.data();
+  return true;
+}
+
+std::string camera_base(const PluginConfig& c, const std::string& robot, const std::string& sub) {
+  std::string base = plugin_robot_namespace(c, robot);
+  std::string cam = c.text("cameraName") + sub;
+  while (!cam.empty() && cam.front() == '/') cam.erase(cam.begin());
+  if (!cam.empty()) base = base.empty() ? cam : base + "/" + cam;
+  return base;
+}
+
+namespace {
+
+OutputPort image_port(const PluginConfig& c, const std::string& robot, const std::string& base, const char* name,
+                      SampleType type, const std::string& topic) {
+  OutputPort p;
+  p.name = name;
+  p.type = type;
+  p.ns = plugin_robot_namespace(c, robot);
+  p.topic = resolve_topic(base, topic);
+  p.queue = 2;
+  p.frame = c.text("frameName");
+  p.tf_prefix = false;  // the frame as written, without its leading '/'s
+  return p;
+}
+
+// camera_info: D, the baseline, the period
+OutputPort info_port(const PluginConfig& c, const std::string& robot, const std::string& base, const char* name,
+                     const std::string& topic, size_t frame, double baseline) {
+  OutputPort p = image_port(c, robot, base, name, SampleType::CameraInfo, topic);
+  p.image.frame = frame;
+  p.image.distortion = {c.number("distortionK1"), c.number("distortionK2"), c.number("distortionT1"),
+                        c.number("distortionT2"), c.number("distortionK3")};
+  p.image.baseline = baseline;
+  const double r = c.number("updateRate");
+  p.image.period = r > 0 ? 1.0 / r : 0.0;
+  return p;
+}
+
+}  // namespace
+
+std::vector<OutputPort> camera_ports(const PluginConfig& c, const std::string& robot, const std::string& sub,
+                                     size_t frame, double baseline) {
+  const std::string base = camera_base(c, robot, sub);
+  OutputPort image = image_port(c, robot, base, "image", SampleType::Image, c.text("imageTopicName"));
+  image.image.frame = frame;
+  return {image, info_port(c, robot, base, "camera_info", c.text("cameraInfoTopicName"), frame, baseline)};
+}
+
+std::vector<OutputPort> depth_camera_ports(const PluginConfig& c, const std::string& robot) {
+  const std::string base = camera_base(c, robot);
+  std::vector<OutputPort> ports = camera_ports(c, robot, "", 0, c.number("hackBaseline"));
+  ports[0].parts = kCameraImage;
+  ports[1].idle_parts = kCameraDepth;
+  // the depth camera_info is the colour one's message, sent just before it
+  OutputPort depth_info =
+      info_port(c, robot, base, "depth_camera_info", c.text("depthImageCameraInfoTopicName"), 0, c.number("hackBaseline"));
+  depth_info.idle_parts = kCameraDepth;
+  ports.insert(ports.begin() + 1, depth_info);
+  OutputPort depth = image_port(c, robot, base, "depth", SampleType::DepthImage, c.text("depthImageTopicName"));
+  depth.image.millimetres = c.flag("useDepth16UC1Format");
+  depth.parts = kCameraDepth;
+  ports.push_back(depth);
+  OutputPort cloud = image_port(c, robot, base, "points", SampleType::DepthCloud, c.text("pointCloudTopicName"));
+  cloud.parts = kCameraCloud;
+  ports.push_back(cloud);
+  return ports;
+}
+
 const PluginKind& camera_kind() {
   static const PluginKind k = [] {
     PluginKind k;
@@ -519,6 +602,9 @@ const PluginKind& camera_kind() {
     k.lazy = true;
     k.output_group = "images";
     k.finish = finish_camera;
+    k.outputs = [](const PluginConfig& c, const std::string& robot) {
+      return camera_ports(c, robot, "", 0, c.number("hackBaseline"));
+    };
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {
       return std::make_unique<CameraPlugin>(c, robot, seed, false);
     };

@@ -59,6 +59,7 @@ struct CameraOut : Output {
   int channel_bytes() const { return encoding.size() > 2 && encoding.compare(encoding.size() - 2, 2, "16") == 0 ? 2 : 1; }
   size_t step() const { return static_cast<size_t>(width) * channels() * channel_bytes(); }  // [bytes] per row
   void visit(FieldVisitor& v) const override;
+  bool image_sample(size_t frame, ImageSample* s) const override;  // frame 0: this frame
 };
 
 // The image encoding of a sensor <format> (docs/COMPAT-sensors.md "16-bit images"); "" for an unknown one.
@@ -72,6 +73,19 @@ const std::vector<ParamDef>& camera_plugin_schema();
 const std::map<std::string, std::string>& camera_ignored_keys();
 // Checks the sensor keys (sizes, fov, clip, format).
 void finish_camera(ResolveContext& ctx);
+
+// Where a camera's topics sit: <the plug-in's namespace>/<cameraName><sub>, without cameraName's leading '/'s
+// (gazebo_ros_camera_utils; sub: a multicamera's "/left" or "/right").
+std::string camera_base(const PluginConfig& c, const std::string& robot, const std::string& sub = "");
+// The output ports of one camera (gazebo_ros_camera_utils): the Image on imageTopicName and the CameraInfo on
+// cameraInfoTopicName under camera_base (queue 2), header frame frameName, camera_info at updateRate (0: with
+// every frame) with D from distortionK1..K3, T1, T2 and P[3] = -f * baseline [m]. frame: the frame of the output.
+std::vector<OutputPort> camera_ports(const PluginConfig& c, const std::string& robot, const std::string& sub,
+                                     size_t frame, double baseline);
+// A depth camera's (openni_kinect, depth_camera): the camera's ports, the depth camera_info (the same message, sent
+// with the first), the depth image (useDepth16UC1Format) and the organized cloud; each names the part of the frame
+// it takes (kCamera*), camera_info alone the cheapest, depth.
+std::vector<OutputPort> depth_camera_ports(const PluginConfig& c, const std::string& robot);
 
 // A camera plug-in instance: renders colour, and depth with its cloud when depth is set.
 class CameraPlugin : public Plugin {

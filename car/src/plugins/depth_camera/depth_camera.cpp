@@ -48,6 +48,7 @@ const PluginKind& depth_camera_kind() {
     k.lazy = true;
     k.output_group = "images";
     k.finish = finish;
+    k.outputs = depth_camera_ports;
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {
       return std::make_unique<CameraPlugin>(c, robot, seed, true);
     };

@@ -161,6 +161,10 @@ class MultiCamera : public Plugin {
 }  // namespace
 
 // Each side's fields under "<side>/": e.g. "left/image".
+bool MultiCameraOut::image_sample(size_t frame, ImageSample* s) const {
+  return frame < frames.size() && frames[frame].image_sample(0, s);
+}
+
 void MultiCameraOut::visit(FieldVisitor& v) const {
   class Prefixed : public FieldVisitor {
    public:
@@ -202,6 +206,22 @@ const PluginKind& multicamera_kind() {
     k.lazy = true;
     k.output_group = "multicameras";
     k.finish = finish;
+    // per side that has a camera, its image and camera_info under <cameraName>/<side> (the frames in the same
+    // order); the right camera's P carries -f hackBaseline
+    k.outputs = [](const PluginConfig& c, const std::string& robot) {
+      std::vector<OutputPort> ports;
+      size_t frame = 0;
+      for (const char* side : kSides) {
+        if (c.text(side_key(side, "@name")).empty()) continue;
+        const double baseline = std::string(side) == "left" ? 0.0 : c.number("hackBaseline");
+        for (OutputPort& p : camera_ports(c, robot, std::string("/") + side, frame, baseline)) {
+          p.name = std::string(side) + "/" + p.name;
+          ports.push_back(std::move(p));
+        }
+        ++frame;
+      }
+      return ports;
+    };
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {
       return std::make_unique<MultiCamera>(c, robot, seed);
     };

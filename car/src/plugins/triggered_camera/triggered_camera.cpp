@@ -43,15 +43,17 @@ const PluginKind& triggered_camera_kind() {
     k.lazy = false;
     // the trigger topic sits beside the image: under <robotNamespace>/<cameraName>
     k.inputs = [](const PluginConfig& c, const std::string& robot) {
-      std::string base = plugin_robot_namespace(c, robot);
-      std::string cam = c.text("cameraName");
-      while (!cam.empty() && cam.front() == '/') cam.erase(cam.begin());
-      if (!cam.empty()) base = base.empty() ? cam : base + "/" + cam;
       InputPort p;
       p.name = "trigger";
       p.type = InputType::Trigger;
-      p.topic = resolve_topic(base, c.text("triggerTopicName"));
+      p.topic = resolve_topic(camera_base(c, robot), c.text("triggerTopicName"));
       return std::vector<InputPort>{p};
+    };
+    // upstream publishes image and camera_info only while the image topic has subscribers
+    k.outputs = [](const PluginConfig& c, const std::string& robot) {
+      std::vector<OutputPort> ports = camera_ports(c, robot, "", 0, c.number("hackBaseline"));
+      ports[1].image.with_image = true;
+      return ports;
     };
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {
       return std::make_unique<TriggeredCamera>(c, robot, seed);

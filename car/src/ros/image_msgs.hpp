@@ -1,4 +1,6 @@
-// Messages of the camera kinds (camera, openni_kinect): image, camera_info, depth image, organized cloud.
+// The camera sample types' messages (sensor_msgs/Image, CameraInfo, PointCloud2) from an ImageSample: the views
+// roscpp serialises straight from the core's arrays, and the same messages built as sensor_msgs structs. Names no
+// plug-in kind.
 #pragma once
 
 #include <ros/ros.h>
@@ -10,9 +12,9 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <vector>
 
-#include "../adapter.hpp"
-#include "camera/camera.hpp"
+#include "car_sim/ports.hpp"
 
 namespace car_ros {
 
@@ -22,7 +24,8 @@ namespace car_ros {
 // twice. Only when someone subscribes: roscpp serialises only for connected subscribers. The bytes equal those
 // of camera_image(), depth_image() and point_cloud() (test/ros_msgs/test_camera_msgs.cpp).
 struct FrameView {
-  std::shared_ptr<const car_sim::CameraOut> out;  // kept alive until the message is sent
+  std::shared_ptr<const void> owner;  // the output that holds the sample's arrays, kept alive until sent
+  car_sim::ImageSample sample;
   std::string frame;
   ros::Time stamp;
 };
@@ -32,41 +35,27 @@ struct DepthView : FrameView {
 };
 struct CloudView : FrameView {};
 
+// A depth [m] in millimetres, 0 where there is no depth (NaN).
+inline uint16_t depth_mm(float d) { return std::isfinite(d) ? static_cast<uint16_t>(std::lround(d * 1000.0f)) : 0; }
+// A point of the cloud has a depth (its z).
+inline bool has_point(const float* xyz) { return std::isfinite(xyz[2]); }
+// rgb packed as 0x00RRGGBB in a float's bits, as PCL and rviz read it
+inline uint32_t packed_rgb(const uint8_t* rgb) {
+  return (uint32_t(rgb[0]) << 16) | (uint32_t(rgb[1]) << 8) | uint32_t(rgb[2]);
+}
+
 // The colour image, in the frame's encoding.
-sensor_msgs::Image camera_image(const car_sim::CameraOut& o, const std::string& frame, const ros::Time& stamp);
-// plumb_bob: D from distortionK1..K3/T1..T2, K = [f 0 cx; 0 f cy; 0 0 1], P with -f * hackBaseline.
-sensor_msgs::CameraInfo camera_info(const car_sim::CameraOut& o, const car_sim::PluginConfig& cfg,
+sensor_msgs::Image camera_image(const car_sim::ImageSample& s, const std::string& frame, const ros::Time& stamp);
+// plumb_bob: D from the port (k1 k2 t1 t2 k3), K = [f 0 cx; 0 f cy; 0 0 1], P with -f * baseline.
+sensor_msgs::CameraInfo camera_info(const car_sim::ImageSample& s, const car_sim::ImagePortSettings& port,
                                     const std::string& frame, const ros::Time& stamp);
 // 32FC1 metres, or 16UC1 millimetres (0 where there is no depth).
-sensor_msgs::Image depth_image(const car_sim::CameraOut& o, bool millimetres, const std::string& frame,
+sensor_msgs::Image depth_image(const car_sim::ImageSample& s, bool millimetres, const std::string& frame,
                                const ros::Time& stamp);
 // Organized H x W cloud: x@0 y@4 z@8 rgb@16 (FLOAT32), point_step 32, optical frame.
-sensor_msgs::PointCloud2 point_cloud(const car_sim::CameraOut& o, const std::string& frame, const ros::Time& stamp);
+sensor_msgs::PointCloud2 point_cloud(const car_sim::ImageSample& s, const std::string& frame, const ros::Time& stamp);
 // The cloud's point fields, as the Kinect plug-in writes them: x@0 y@4 z@8 rgb@16 (FLOAT32, count 1), point_step 32.
 const std::vector<sensor_msgs::PointField>& cloud_fields();
-
-// The publishers of one camera: image and camera_info under <robotNamespace>/<cameraName>/, camera_info
-// throttled to the plug-in's updateRate (0 = with every image).
-class CameraTopics {
- public:
-  // Returns the topics, for the log line.
-  std::string advertise(ros::NodeHandle& nh, const car_sim::PluginConfig& c, const std::string& model_name);
-  bool listened() const;
-  // The image topic has subscribers.
-  bool image_listened() const { return image_ && image_.getNumSubscribers() > 0; }
-  // Image (when subscribed) and camera_info (when due) of a frame.
-  void publish(const std::shared_ptr<const car_sim::CameraOut>& o, const ros::Time& stamp, NodeContext& node);
-  const std::string& base() const { return base_; }
-  const std::string& frame_id() const { return frame_; }
-  ros::Publisher extra_info;  // a second camera_info topic published with the first (the Kinect's depth info)
-
- private:
-  car_sim::PluginConfig cfg_;
-  std::string base_, frame_;
-  ros::Publisher image_, info_;
-  double info_period_ = 0.0;  // [s]
-  ros::Time last_info_;
-};
 
 }  // namespace car_ros
 
@@ -111,8 +100,8 @@ template <class Stream>
 void write_image_head(Stream& s, const car_ros::FrameView& v, const std::string& encoding, uint32_t step,
                       uint32_t bytes) {
   write_header(s, v);
-  s.next(static_cast<uint32_t>(v.out->height));
-  s.next(static_cast<uint32_t>(v.out->width));
+  s.next(static_cast<uint32_t>(v.sample.height));
+  s.next(static_cast<uint32_t>(v.sample.width));
   s.next(encoding);
   s.next(static_cast<uint8_t>(0));
   s.next(step);
@@ -121,21 +110,19 @@ void write_image_head(Stream& s, const car_ros::FrameView& v, const std::string&
 inline uint32_t image_length(const car_ros::FrameView& v, const std::string& encoding, uint32_t bytes) {
   return header_length(v) + 4 + 4 + 4 + static_cast<uint32_t>(encoding.size()) + 1 + 4 + 4 + bytes;
 }
-inline uint32_t image_step(const car_sim::CameraOut& o) {
-  return static_cast<uint32_t>(o.step());
-}
 }  // namespace car_views
 
 template <>
 struct Serializer<car_ros::ImageView> {
   template <class Stream>
   static void write(Stream& s, const car_ros::ImageView& v) {
-    const auto& im = v.out->image;
-    car_views::write_image_head(s, v, v.out->encoding, car_views::image_step(*v.out), static_cast<uint32_t>(im.size()));
-    if (!im.empty()) std::memcpy(s.advance(static_cast<uint32_t>(im.size())), im.data(), im.size());
+    const car_sim::ImageSample& im = v.sample;
+    const uint32_t n = static_cast<uint32_t>(im.image_bytes);
+    car_views::write_image_head(s, v, im.encoding, im.step, n);
+    if (n > 0) std::memcpy(s.advance(n), im.image, n);
   }
   static uint32_t serializedLength(const car_ros::ImageView& v) {
-    return car_views::image_length(v, v.out->encoding, static_cast<uint32_t>(v.out->image.size()));
+    return car_views::image_length(v, v.sample.encoding, static_cast<uint32_t>(v.sample.image_bytes));
   }
 };
 
@@ -146,22 +133,23 @@ struct Serializer<car_ros::DepthView> {
     return v.millimetres ? mm : m;
   }
   static uint32_t bytes(const car_ros::DepthView& v) {
-    return static_cast<uint32_t>(v.out->width) * static_cast<uint32_t>(v.out->height) * (v.millimetres ? 2u : 4u);
+    return static_cast<uint32_t>(v.sample.width) * static_cast<uint32_t>(v.sample.height) * (v.millimetres ? 2u : 4u);
   }
   template <class Stream>
   static void write(Stream& s, const car_ros::DepthView& v) {
-    const car_sim::CameraOut& o = *v.out;
+    const car_sim::ImageSample& o = v.sample;
     const uint32_t n = bytes(v);
     car_views::write_image_head(s, v, encoding(v), static_cast<uint32_t>(o.width) * (v.millimetres ? 2u : 4u), n);
     uint8_t* px = s.advance(n);
     if (v.millimetres) {
       // [mm], 0 where there is no depth
-      for (size_t i = 0; i < o.depth.size(); ++i) {
-        const uint16_t d = std::isfinite(o.depth[i]) ? static_cast<uint16_t>(std::lround(o.depth[i] * 1000.0f)) : 0;
+      const size_t count = static_cast<size_t>(o.width) * o.height;
+      for (size_t i = 0; i < count; ++i) {
+        const uint16_t d = car_ros::depth_mm(o.depth[i]);
         std::memcpy(px + 2 * i, &d, 2);
       }
     } else {
-      std::memcpy(px, o.depth.data(), n);
+      std::memcpy(px, o.depth, n);
     }
   }
   static uint32_t serializedLength(const car_ros::DepthView& v) {
@@ -173,7 +161,7 @@ template <>
 struct Serializer<car_ros::CloudView> {
   template <class Stream>
   static void write(Stream& s, const car_ros::CloudView& v) {
-    const car_sim::CameraOut& o = *v.out;
+    const car_sim::ImageSample& o = v.sample;
     const size_t n = static_cast<size_t>(o.width) * o.height;
     car_views::write_header(s, v);
     s.next(static_cast<uint32_t>(o.height));
@@ -186,18 +174,17 @@ struct Serializer<car_ros::CloudView> {
     uint8_t* p = s.advance(static_cast<uint32_t>(32 * n));
     bool dense = true;
     for (size_t i = 0; i < n; ++i, p += 32) {
-      // x y z, 4 bytes of padding, rgb packed as 0x00RRGGBB in a float's bits (as PCL and rviz read it), 12 more
+      // x y z, 4 bytes of padding, rgb packed in a float's bits, 12 more
       std::memset(p, 0, 32);
       std::memcpy(p, &o.points[3 * i], 12);
-      const uint32_t rgb = (uint32_t(o.point_rgb[3 * i]) << 16) | (uint32_t(o.point_rgb[3 * i + 1]) << 8) |
-                           uint32_t(o.point_rgb[3 * i + 2]);
+      const uint32_t rgb = car_ros::packed_rgb(&o.point_rgb[3 * i]);
       std::memcpy(p + 16, &rgb, 4);
-      if (!std::isfinite(o.points[3 * i + 2])) dense = false;
+      if (!car_ros::has_point(&o.points[3 * i])) dense = false;
     }
     s.next(static_cast<uint8_t>(dense ? 1 : 0));
   }
   static uint32_t serializedLength(const car_ros::CloudView& v) {
-    const uint32_t n = static_cast<uint32_t>(v.out->width) * static_cast<uint32_t>(v.out->height);
+    const uint32_t n = static_cast<uint32_t>(v.sample.width) * static_cast<uint32_t>(v.sample.height);
     return car_views::header_length(v) + 4 + 4 + serializationLength(car_ros::cloud_fields()) + 1 + 4 + 4 + 4 + 32 * n + 1;
   }
 };

@@ -1,0 +1,88 @@
+// The output half of the ROS bridge for the camera sample types: Image -> sensor_msgs/Image (the frame's colour
+// image), CameraInfo -> sensor_msgs/CameraInfo, DepthImage -> sensor_msgs/Image (32FC1 or 16UC1), DepthCloud ->
+// sensor_msgs/PointCloud2 (organized). The big messages are serialised by roscpp straight from the output's arrays
+// on the publishing thread (image_msgs.hpp), which keeps the output until they are sent. Names no plug-in kind.
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/PointCloud2.h>
+
+#include "conversions.hpp"
+#include "image_msgs.hpp"
+#include "outputs.hpp"
+
+namespace car_ros {
+
+std::string OutputPorts::setup_image(Port& p, NodeContext& node) {
+  using T = car_sim::SampleType;
+  const car_sim::OutputPort& op = p.port;
+  switch (op.type) {
+    case T::Image:
+      p.pub = node.nh().advertise<sensor_msgs::Image>(op.topic, op.queue);
+      return "image " + op.topic;
+    case T::CameraInfo:
+      p.pub = node.nh().advertise<sensor_msgs::CameraInfo>(op.topic, op.queue);
+      return "camera_info " + op.topic;
+    case T::DepthImage:
+      p.pub = node.nh().advertise<sensor_msgs::Image>(op.topic, op.queue);
+      return std::string("depth image ") + (op.image.millimetres ? "(16UC1) " : "") + op.topic;
+    case T::DepthCloud:
+      p.pub = node.nh().advertise<sensor_msgs::PointCloud2>(op.topic, op.queue);
+      return "cloud " + op.topic;
+    default: return "";
+  }
+}
+
+void OutputPorts::publish_image(Port& p, const std::shared_ptr<const car_sim::Output>& out, const ros::Time& stamp,
+                                NodeContext& node) {
+  using T = car_sim::SampleType;
+  car_sim::ImageSample s;
+  if (!out->image_sample(p.port.image.frame, &s)) return;
+  // a part nobody took as the frame was made is not in it (a subscriber that came since gets the next frame)
+  const bool listened = p.pub.getNumSubscribers() > 0;
+  switch (p.port.type) {
+    case T::Image: {
+      if (!listened || !s.image) return;
+      ImageView v;
+      v.owner = out;
+      v.sample = std::move(s);
+      v.frame = p.frame;
+      v.stamp = stamp;
+      node.publish(p.pub, std::move(v));
+      return;
+    }
+    case T::CameraInfo: {
+      if (p.image_of >= 0 && ports_[p.image_of].pub.getNumSubscribers() == 0) return;
+      // at most one per period of sim time [s]; time going back (a reset) sends one at once
+      const double period = p.port.image.period;
+      const bool due = period <= 0.0 || (stamp - p.last).toSec() >= period - 1e-9 || stamp < p.last;
+      if (!due) return;
+      node.publish(p.pub, camera_info(s, p.port.image, p.frame, stamp));
+      p.last = stamp;
+      return;
+    }
+    case T::DepthImage: {
+      if (!listened || !s.depth) return;
+      DepthView v;
+      v.owner = out;
+      v.sample = std::move(s);
+      v.frame = p.frame;
+      v.stamp = stamp;
+      v.millimetres = p.port.image.millimetres;
+      node.publish(p.pub, std::move(v));
+      return;
+    }
+    case T::DepthCloud: {
+      if (!listened || !s.points) return;
+      CloudView v;
+      v.owner = out;
+      v.sample = std::move(s);
+      v.frame = p.frame;
+      v.stamp = stamp;
+      node.publish(p.pub, std::move(v));
+      return;
+    }
+    default: return;
+  }
+}
+
+}  // namespace car_ros

@@ -1,0 +1,140 @@
+// The camera kinds' output ports, resolved in the core (PluginInfo::outputs), and the frames they read
+// (Output::image_sample). Values from the kinds' schemas as gazebo_ros_camera_utils reads them: image and
+// camera_info under <namespace>/<cameraName>/ with queue 2, header frame frameName, camera_info once per
+// 1/updateRate s, D = (k1 k2 t1 t2 k3), P[3] = -f hackBaseline.
+#include <gtest/gtest.h>
+
+#include "../range/ray_world.hpp"
+#include "camera/camera.hpp"
+#include "multicamera/multicamera.hpp"
+#include "seed_car.hpp"
+
+using namespace car_sim;
+using namespace car_sim::test_support;
+
+namespace {
+
+std::vector<OutputPort> ports_of(const World& w, const std::string& plugin) {
+  for (const auto& p : w.plugins())
+    if (p.config.name == plugin) return p.outputs;
+  ADD_FAILURE() << "no plug-in " << plugin;
+  return {};
+}
+
+// A 32 x 24 stereo pair, cameraName stereo, frameName stereo_optical, hackBaseline 0.14, updateRate 4.
+std::string stereo() {
+  auto cam = [](const char* name, const char* y) {
+    return std::string("<camera name='") + name + "'><pose>0 " + y + " 0 0 0 0</pose><horizontal_fov>1.0" +
+           "</horizontal_fov><image><width>32</width><height>24</height><format>R8G8B8</format></image><clip>" +
+           "<near>0.05</near><far>20</far></clip></camera>";
+  };
+  return "<sensor type='multicamera' name='stereo'><update_rate>10</update_rate>" + cam("left", "0.07") +
+         cam("right", "-0.07") +
+         "<plugin name='stereo_plugin' filename='libgazebo_ros_multicamera.so'><cameraName>stereo</cameraName>"
+         "<frameName>stereo_optical</frameName><hackBaseline>0.14</hackBaseline><updateRate>4</updateRate>"
+         "</plugin></sensor>";
+}
+
+}  // namespace
+
+// The seed car's Kinect (car_camera_lidar kinect.xacro: cameraName camera, rgb/ and depth/ topics, frameName
+// support_depth, updateRate 10, no robotNamespace: global): the colour image, the depth camera_info (sent just
+// before the colour one), the colour camera_info, the depth image in metres, the cloud.
+TEST(CameraPorts, KinectTopicsInOrder) {
+  auto w = world_with_car(false);
+  const auto ports = ports_of(*w, "kinect_camera_controller");
+  ASSERT_EQ(ports.size(), 5u);
+  const std::vector<std::pair<SampleType, std::string>> want = {
+      {SampleType::Image, "/camera/rgb/image_raw"},
+      {SampleType::CameraInfo, "/camera/depth/camera_info"},
+      {SampleType::CameraInfo, "/camera/rgb/camera_info"},
+      {SampleType::DepthImage, "/camera/depth/image_raw"},
+      {SampleType::DepthCloud, "/camera/depth/points"}};
+  for (size_t i = 0; i < want.size(); ++i) {
+    EXPECT_EQ(ports[i].type, want[i].first) << i;
+    EXPECT_EQ(ports[i].topic, want[i].second) << i;
+    EXPECT_EQ(ports[i].queue, 2u) << i;
+    EXPECT_EQ(ports[i].frame, "support_depth") << i;
+    EXPECT_FALSE(ports[i].tf_prefix) << i;
+    EXPECT_EQ(ports[i].image.frame, 0u) << i;
+  }
+  EXPECT_FALSE(ports[3].image.millimetres);
+  // updateRate 10 Hz: one camera_info per 0.1 s; <baseline> is not hackBaseline: P[3] 0
+  EXPECT_DOUBLE_EQ(ports[2].image.period, 0.1);
+  EXPECT_EQ(ports[2].image.baseline, 0.0);
+}
+
+// Which parts of the frame each port takes: the image the colour, the depth image depth, the cloud all three
+// (kCameraCloud); camera_info none of its own, but depth (the cheapest) while nothing else is taken.
+TEST(CameraPorts, KinectPortsNameTheirParts) {
+  auto w = world_with_car(false);
+  const auto ports = ports_of(*w, "kinect_camera_controller");
+  ASSERT_EQ(ports.size(), 5u);
+  const uint32_t parts[5] = {kCameraImage, 0, 0, kCameraDepth, kCameraCloud};
+  const uint32_t idle[5] = {0, kCameraDepth, kCameraDepth, 0, 0};
+  for (size_t i = 0; i < 5; ++i) {
+    EXPECT_EQ(ports[i].parts, parts[i]) << i;
+    EXPECT_EQ(ports[i].idle_parts, idle[i]) << i;
+  }
+}
+
+// Per side, its frame of the output, its topics under stereo/<side>, the right one's P[3] from hackBaseline
+// (the left camera's baseline is 0, as upstream's multicamera sets it).
+TEST(CameraPorts, MulticameraSidesFramesAndBaselines) {
+  auto w = world_with_cube(ray_world(""), stereo());
+  const auto ports = ports_of(*w, "stereo_plugin");
+  ASSERT_EQ(ports.size(), 4u);
+  EXPECT_EQ(ports[0].topic, "/stereo/left/image_raw");
+  EXPECT_EQ(ports[1].topic, "/stereo/left/camera_info");
+  EXPECT_EQ(ports[2].topic, "/stereo/right/image_raw");
+  EXPECT_EQ(ports[3].topic, "/stereo/right/camera_info");
+  EXPECT_EQ(ports[0].image.frame, 0u);
+  EXPECT_EQ(ports[1].image.frame, 0u);
+  EXPECT_EQ(ports[2].image.frame, 1u);
+  EXPECT_EQ(ports[3].image.frame, 1u);
+  EXPECT_EQ(ports[1].image.baseline, 0.0);
+  EXPECT_EQ(ports[3].image.baseline, 0.14);
+  EXPECT_DOUBLE_EQ(ports[3].image.period, 0.25);
+  EXPECT_EQ(ports[3].frame, "stereo_optical");
+}
+
+// A multicamera output's frame i is its i-th side's; there is no third.
+TEST(CameraPorts, MulticameraSamplesAreItsFrames) {
+  auto w = world_with_cube(ray_world(""), stereo());
+  w->set_sensor_active("cube", "stereo_plugin", true);
+  w->step(100);
+  const auto outs = w->take_outputs<MultiCameraOut>();
+  ASSERT_EQ(outs.size(), 1u);
+  ImageSample s;
+  ASSERT_TRUE(outs[0].image_sample(1, &s));
+  EXPECT_EQ(s.image, outs[0].frames[1].image.data());
+  EXPECT_EQ(s.image_bytes, 32u * 24u * 3u);
+  EXPECT_EQ(s.step, 96u);
+  EXPECT_EQ(s.encoding, "rgb8");
+  EXPECT_EQ(s.depth, nullptr);
+  EXPECT_FALSE(outs[0].image_sample(2, &s));
+}
+
+// The triggered camera sends camera_info only while its image has subscribers (upstream's triggered camera);
+// the plain camera always.
+TEST(CameraPorts, TriggeredCameraInfoGoesWithItsImage) {
+  auto sensor = [](const char* file) {
+    return std::string("<sensor type='camera' name='eye'><camera><image><width>8</width><height>6</height>") +
+           "</image></camera><plugin name='eye_camera' filename='" + file +
+           "'><cameraName>eye</cameraName><distortionK1>0.1</distortionK1><distortionT2>0.2</distortionT2>" +
+           "</plugin></sensor>";
+  };
+  auto triggered = world_with_cube(ray_world(""), sensor("libgazebo_ros_triggered_camera.so"));
+  auto plain = world_with_cube(ray_world(""), sensor("libgazebo_ros_camera.so"));
+  const auto t = ports_of(*triggered, "eye_camera"), p = ports_of(*plain, "eye_camera");
+  ASSERT_EQ(t.size(), 2u);
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_EQ(t[1].topic, "/eye/camera_info");
+  EXPECT_TRUE(t[1].image.with_image);
+  EXPECT_FALSE(p[1].image.with_image);
+  // D in plumb_bob's order k1 k2 t1 t2 k3
+  const std::array<double, 5> d = {0.1, 0, 0, 0.2, 0};
+  EXPECT_EQ(p[1].image.distortion, d);
+  // updateRate 0: with every frame
+  EXPECT_EQ(p[1].image.period, 0.0);
+}
