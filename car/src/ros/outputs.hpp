@@ -1,9 +1,12 @@
 // The output half of the ROS bridge for the kinds whose outputs have ports: one converter per sample type
-// (Odometry -> nav_msgs/Odometry and its TF, JointStates -> sensor_msgs/JointState, JointTransforms -> TF). Frames
-// get the tf_prefix of the port's namespace (gazebo_ros resolveTF). Names no plug-in kind.
+// (Odometry -> nav_msgs/Odometry and its TF, JointStates -> sensor_msgs/JointState, JointTransforms -> TF; the
+// sensors' LaserScan, PointCloud, LidarCloud -> PointCloud2, Range, Imu, NavSatFix, Vector3 -> Vector3Stamped,
+// MagneticField, Wrench -> WrenchStamped, Contacts -> gazebo_msgs/ContactsState, Transform -> TF). Frames get the
+// tf_prefix of the port's namespace (gazebo_ros resolveTF) where the port asks for it. Names no plug-in kind.
 #pragma once
 
 #include <ros/ros.h>
+#include <std_msgs/Header.h>
 
 #include <memory>
 #include <string>
@@ -29,7 +32,14 @@ class OutputPorts {
     ros::Publisher pub;
     std::string prefix;              // tf_prefix of the port's namespace ("" = none)
     std::string frame, child_frame;  // as published
+    ros::Time last;                  // the last message's stamp (min_period)
   };
+  // A message with the port's header, on its publisher.
+  template <class M>
+  static void publish(const Port& p, M msg, const std_msgs::Header& header, NodeContext& node) {
+    msg.header = header;
+    node.publish(p.pub, std::move(msg));
+  }
   std::vector<Port> ports_;
   const car_sim::RobotModel* model_ = nullptr;
 };
