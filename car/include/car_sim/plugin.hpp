@@ -47,6 +47,20 @@ struct Output {
   virtual const std::vector<JointState>* joint_states_sample() const { return nullptr; }
   // ---- cameras: frame `frame` of the output (a multicamera has one per side); false when it has none
   virtual bool image_sample(size_t frame, ImageSample* s) const { return false; }
+  // ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
+  virtual const LaserScanSample* laser_scan_sample() const { return nullptr; }
+  virtual const PointCloudSample* point_cloud_sample() const { return nullptr; }
+  virtual const LidarCloudSample* lidar_cloud_sample() const { return nullptr; }
+  virtual const RangeSample* range_sample() const { return nullptr; }
+  // port: the Imu port's name (an instance with two, as hector_imu's measurement and biases, gives each its own)
+  virtual bool imu_sample(const std::string& port, ImuSample* s) const { return false; }
+  virtual const NavSatFixSample* nav_sat_fix_sample() const { return nullptr; }
+  // Vector3 and MagneticField ports
+  virtual bool vector3_sample(Eigen::Vector3d* v) const { return false; }
+  virtual const Wrench* wrench_sample() const { return nullptr; }
+  virtual const std::vector<ContactPair>* contacts_sample() const { return nullptr; }
+  // Transform ports: a frame in its parent frame
+  virtual bool pose_sample(Eigen::Isometry3d* pose) const { return false; }
 };
 using OutputPtr = std::unique_ptr<Output>;
 using OutputQueue = std::vector<OutputPtr>;
@@ -215,8 +229,10 @@ struct PluginKind {
   std::function<void(ResolveContext&)> finish;
   // Its input ports for a resolved configuration on a robot, topics resolved (none: no inputs).
   std::function<std::vector<InputPort>(const PluginConfig& config, const std::string& robot)> inputs;
-  // Its output ports for a resolved configuration on a robot (none: its outputs have a ROS adapter instead).
-  std::function<std::vector<OutputPort>(const PluginConfig& config, const std::string& robot)> outputs;
+  // Its output ports for a resolved configuration on a robot in a world (env: its gravity when the instance is
+  // made), topics, frames and covariances resolved (none: its outputs have a ROS adapter instead).
+  std::function<std::vector<OutputPort>(const PluginConfig& config, const std::string& robot, const Environment& env)>
+      outputs;
   // An instance for a resolved configuration. seed: the world's noise seed.
   std::function<std::unique_ptr<Plugin>(const PluginConfig& config, const std::string& robot, uint64_t seed)> make;
 };
@@ -228,6 +244,12 @@ std::function<std::vector<InputPort>(const PluginConfig&, const std::string&)> t
 
 // An output port of joint states on <the plug-in's namespace>/joint_states.
 OutputPort joint_states_port(const PluginConfig& c, const std::string& robot, uint32_t queue);
+
+// ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
+// A sensor's output port: `type` on the topic its schema key `topic_key` names under the plug-in's namespace, the
+// header frame `frame` with its leading '/'s dropped (no tf_prefix), the publisher's queue as upstream.
+OutputPort sensor_port(const PluginConfig& c, const std::string& robot, const std::string& name, SampleType type,
+                       const std::string& topic_key, const std::string& frame, uint32_t queue);
 
 // Every registered kind, in registration order.
 const std::vector<const PluginKind*>& plugin_kinds();

@@ -81,14 +81,26 @@ struct CommandResult {
 
 // ---- output ports -----------------------------------------------------------------------------------------
 
-// The sample families of outputs with a port (more kinds move onto ports one family at a time): a pose and twist
-// (Odometry), joint states (JointStates), and the child links' frames relative to their parents from those joints
-// (JointTransforms, TF only). An output hands its samples over through Output::odometry_sample and
-// Output::joint_states_sample.
+// The sample families of output ports: a pose and twist (Odometry), joint states (JointStates), the child links'
+// frames relative to their parents from those joints (JointTransforms, TF only), and the cameras' and sensors'
+// families below.
+// An output hands its samples over through Output's *_sample functions (plugin.hpp), one per family.
 enum class SampleType {
   Odometry, JointStates, JointTransforms,
-  // cameras (ImageSample, below): the colour image, its camera_info, the depth image, the organized depth cloud
+  // ---- cameras (ImageSample, below): the colour image, its camera_info, the depth image, the organized depth cloud
   Image, CameraInfo, DepthImage, DepthCloud,
+  // ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
+  LaserScan,      // sensor_msgs/LaserScan
+  PointCloud,     // sensor_msgs/PointCloud, one channel (block_laser)
+  LidarCloud,     // sensor_msgs/PointCloud2, fields x y z intensity ring (velodyne)
+  Range,          // sensor_msgs/Range
+  Imu,            // sensor_msgs/Imu
+  NavSatFix,      // sensor_msgs/NavSatFix
+  Vector3,        // geometry_msgs/Vector3Stamped (a velocity, a magnetic field)
+  MagneticField,  // sensor_msgs/MagneticField (a Vector3 sample)
+  Wrench,         // geometry_msgs/WrenchStamped
+  Contacts,       // gazebo_msgs/ContactsState
+  Transform,      // a pose on TF only: frame -> child_frame
 };
 
 // A pose with a twist: a frame in its parent frame, and the velocity of its origin.
@@ -151,7 +163,75 @@ struct OutputPort {
   uint32_t parts = 0;
   uint32_t idle_parts = 0;
   ImagePortSettings image;     // the camera sample types
+  // ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
+  // Imu: the diagonals of the three covariances (x, y, z; orientation as roll, pitch, yaw)
+  std::array<double, 3> orientation_covariance{};
+  std::array<double, 3> angular_velocity_covariance{};
+  std::array<double, 3> linear_acceleration_covariance{};
+  // At most one message per period [s] of sim time, a stamp earlier than the last one restarting the count
+  // (gazebo_ros_range's updateRate); 0 = every sample.
+  double min_period = 0.0;
 };
+
+// ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
+// The samples of the sensors' families. A kind's output struct derives from its sample, so the fields keep their
+// names for the kind's own code, tests and Python fields. Frames and covariances are the port's.
+
+// A planar scan, sensor frame.
+struct LaserScanSample {
+  float angle_min = 0, angle_max = 0, angle_increment = 0;  // [rad]
+  float range_min = 0, range_max = 0;                       // [m]
+  std::vector<float> ranges;       // [m]; +inf: no hit within range_max
+  std::vector<float> intensities;  // laser_retro of the hit surface
+};
+
+// Points with one channel of intensities, sensor frame.
+struct PointCloudSample {
+  std::vector<float> points;       // x y z per point [m]
+  std::vector<float> intensities;  // one per point
+};
+
+// A multi-beam lidar's points with intensity and ring (beam index), sensor frame.
+struct LidarCloudSample {
+  std::vector<float> points;       // x y z per point [m]
+  std::vector<float> intensities;  // one per point
+  std::vector<uint16_t> rings;     // one per point, 0 = the lowest beam
+};
+
+// One range reading (sensor_msgs/Range's fields).
+struct RangeSample {
+  int radiation = 0;                   // 0 ULTRASOUND, 1 INFRARED
+  float field_of_view = 0;             // [rad]
+  float min_range = 0, max_range = 0;  // [m]
+  float range = 0;                     // [m]
+};
+
+// An inertial measurement, sensor frame.
+struct ImuSample {
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // sensor frame in the world
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();       // [rad/s]
+  Eigen::Vector3d linear_acceleration = Eigen::Vector3d::Zero();    // [m/s^2]
+};
+
+// A satellite fix.
+struct NavSatFixSample {
+  double latitude = 0, longitude = 0, altitude = 0;             // [deg], [deg], [m]
+  int status = 0, service = 0;                                  // sensor_msgs/NavSatStatus
+  Eigen::Vector3d position_variance = Eigen::Vector3d::Zero();  // [m^2] diagonal, DIAGONAL_KNOWN
+};
+
+// One pair of bodies in contact: gazebo_msgs/ContactState's fields.
+struct ContactPair {
+  std::string collision1, collision2;   // "model::link::collision" (this sensor's), "model::link" (the other)
+  std::vector<Wrench> wrenches;         // [N], world frame: force on collision1 at each point (torque 0)
+  Wrench total;                         // sum of wrenches
+  std::vector<Eigen::Vector3d> positions;  // [m], world frame
+  std::vector<Eigen::Vector3d> normals;    // unit, world frame, from collision2 into collision1
+  std::vector<double> depths;              // [m]
+};
+
+// A frame name as tf2 wants it: leading '/'s dropped.
+std::string strip_frame(const std::string& frame);
 
 // A topic of a plug-in: an absolute name stays, another goes under the namespace ("" = global).
 std::string resolve_topic(const std::string& ns, const std::string& topic);

@@ -231,6 +231,25 @@ OutputPort wheel_tf_port(const PluginConfig& c, const std::string& robot) {
   return p;
 }
 
+OutputPort sensor_port(const PluginConfig& c, const std::string& robot, const std::string& name, SampleType type,
+                       const std::string& topic_key, const std::string& frame, uint32_t queue) {
+  OutputPort p;
+  p.name = name;
+  p.type = type;
+  p.ns = plugin_robot_namespace(c, robot);
+  p.topic = resolve_topic(p.ns, c.text(topic_key));
+  p.queue = queue;
+  p.frame = frame;
+  p.tf_prefix = false;
+  return p;
+}
+
+std::string strip_frame(const std::string& frame) {
+  size_t i = 0;
+  while (i < frame.size() && frame[i] == '/') ++i;
+  return frame.substr(i);
+}
+
 std::string resolve_topic(const std::string& ns, const std::string& topic) {
   if (!topic.empty() && topic[0] == '/') return topic;
   return ns.empty() ? "/" + topic : "/" + ns + "/" + topic;

@@ -3,9 +3,22 @@
 
 #include <nav_msgs/Odometry.h>
 #include <sensor_msgs/JointState.h>
+// ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
+#include <gazebo_msgs/ContactsState.h>
+#include <geometry_msgs/Vector3Stamped.h>
+#include <geometry_msgs/WrenchStamped.h>
+#include <sensor_msgs/Imu.h>
+#include <sensor_msgs/LaserScan.h>
+#include <sensor_msgs/MagneticField.h>
+#include <sensor_msgs/NavSatFix.h>
+#include <sensor_msgs/PointCloud.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <sensor_msgs/Range.h>
 
 #include <cctype>
+#include <cstring>
 #include <map>
+#include <sstream>
 
 #include "conversions.hpp"
 
@@ -26,6 +39,148 @@ void set_debug_level(const car_sim::PluginConfig& c) {
   const auto it = levels.find(l);
   if (it == levels.end()) return;
   if (ros::console::set_logger_level(ROSCONSOLE_DEFAULT_NAME, it->second)) ros::console::notifyLoggerLevelsChanged();
+}
+
+// ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
+
+geometry_msgs::Vector3 to_vector3(const Eigen::Vector3d& v) {
+  geometry_msgs::Vector3 m;
+  m.x = v.x();
+  m.y = v.y();
+  m.z = v.z();
+  return m;
+}
+
+geometry_msgs::Wrench to_wrench(const car_sim::Wrench& w) {
+  geometry_msgs::Wrench m;
+  m.force = to_vector3(w.force);
+  m.torque = to_vector3(w.torque);
+  return m;
+}
+
+sensor_msgs::LaserScan to_msg(const car_sim::LaserScanSample& s) {
+  sensor_msgs::LaserScan m;
+  m.angle_min = s.angle_min;
+  m.angle_max = s.angle_max;
+  m.angle_increment = s.angle_increment;
+  m.time_increment = 0.f;
+  m.scan_time = 0.f;
+  m.range_min = s.range_min;
+  m.range_max = s.range_max;
+  m.ranges = s.ranges;
+  m.intensities = s.intensities;
+  return m;
+}
+
+// one unnamed channel of intensities (upstream never names it)
+sensor_msgs::PointCloud to_msg(const car_sim::PointCloudSample& s) {
+  sensor_msgs::PointCloud m;
+  const size_t n = s.intensities.size();
+  m.points.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    m.points[i].x = s.points[3 * i];
+    m.points[i].y = s.points[3 * i + 1];
+    m.points[i].z = s.points[3 * i + 2];
+  }
+  m.channels.resize(1);
+  m.channels[0].values = s.intensities;
+  return m;
+}
+
+// fields x y z intensity ring, point_step 32
+sensor_msgs::PointCloud2 to_msg(const car_sim::LidarCloudSample& s) {
+  sensor_msgs::PointCloud2 m;
+  const char* names[5] = {"x", "y", "z", "intensity", "ring"};
+  const uint32_t offsets[5] = {0, 4, 8, 16, 20};
+  for (int k = 0; k < 5; ++k) {
+    sensor_msgs::PointField f;
+    f.name = names[k];
+    f.offset = offsets[k];
+    f.datatype = k == 4 ? sensor_msgs::PointField::UINT16 : sensor_msgs::PointField::FLOAT32;
+    f.count = 1;
+    m.fields.push_back(f);
+  }
+  const size_t n = s.intensities.size();
+  m.point_step = 32;
+  m.row_step = static_cast<uint32_t>(32 * n);
+  m.height = 1;
+  m.width = static_cast<uint32_t>(n);
+  m.is_bigendian = false;
+  m.is_dense = true;
+  m.data.assign(32 * n, 0);
+  for (size_t i = 0; i < n; ++i) {
+    uint8_t* p = m.data.data() + 32 * i;
+    std::memcpy(p, &s.points[3 * i], 12);
+    std::memcpy(p + 16, &s.intensities[i], 4);
+    std::memcpy(p + 20, &s.rings[i], 2);
+  }
+  return m;
+}
+
+sensor_msgs::Range to_msg(const car_sim::RangeSample& s) {
+  sensor_msgs::Range m;
+  m.radiation_type = static_cast<uint8_t>(s.radiation);
+  m.field_of_view = s.field_of_view;
+  m.min_range = s.min_range;
+  m.max_range = s.max_range;
+  m.range = s.range;
+  return m;
+}
+
+// covariances: the port's diagonals
+sensor_msgs::Imu to_msg(const car_sim::ImuSample& s, const car_sim::OutputPort& port) {
+  sensor_msgs::Imu m;
+  m.orientation.x = s.orientation.x();
+  m.orientation.y = s.orientation.y();
+  m.orientation.z = s.orientation.z();
+  m.orientation.w = s.orientation.w();
+  m.angular_velocity = to_vector3(s.angular_velocity);
+  m.linear_acceleration = to_vector3(s.linear_acceleration);
+  for (int i = 0; i < 3; ++i) {
+    m.orientation_covariance[i * 4] = port.orientation_covariance[i];
+    m.angular_velocity_covariance[i * 4] = port.angular_velocity_covariance[i];
+    m.linear_acceleration_covariance[i * 4] = port.linear_acceleration_covariance[i];
+  }
+  return m;
+}
+
+sensor_msgs::NavSatFix to_msg(const car_sim::NavSatFixSample& s) {
+  sensor_msgs::NavSatFix f;
+  f.status.status = static_cast<int8_t>(s.status);
+  f.status.service = static_cast<uint16_t>(s.service);
+  f.latitude = s.latitude;
+  f.longitude = s.longitude;
+  f.altitude = s.altitude;
+  f.position_covariance_type = sensor_msgs::NavSatFix::COVARIANCE_TYPE_DIAGONAL_KNOWN;
+  f.position_covariance[0] = s.position_variance.x();
+  f.position_covariance[4] = s.position_variance.y();
+  f.position_covariance[8] = s.position_variance.z();
+  return f;
+}
+
+// gazebo_msgs/ContactsState (car's gazebo_msgs drop-in), with upstream's debug info text per state
+gazebo_msgs::ContactsState to_msg(const std::vector<car_sim::ContactPair>& states, const std_msgs::Header& header) {
+  gazebo_msgs::ContactsState m;
+  m.header = header;
+  for (size_t i = 0; i < states.size(); ++i) {
+    const car_sim::ContactPair& c = states[i];
+    gazebo_msgs::ContactState s;
+    s.collision1_name = c.collision1;
+    s.collision2_name = c.collision2;
+    std::ostringstream info;
+    info << "Debug:  i:(" << i << "/" << states.size() << ")     my geom:" << c.collision1
+         << "   other geom:" << c.collision2 << "         time:" << header.stamp << "\n";
+    s.info = info.str();
+    for (size_t k = 0; k < c.positions.size(); ++k) {
+      s.wrenches.push_back(to_wrench(c.wrenches[k]));
+      s.contact_positions.push_back(to_vector3(c.positions[k]));
+      s.contact_normals.push_back(to_vector3(c.normals[k]));
+      s.depths.push_back(c.depths[k]);
+    }
+    s.total_wrench = to_wrench(c.total);
+    m.states.push_back(std::move(s));
+  }
+  return m;
 }
 
 }  // namespace
@@ -65,7 +220,24 @@ std::string OutputPorts::setup(const car_sim::PluginInfo& plugin, const car_sim:
       case T::CameraInfo:
       case T::DepthImage:
       case T::DepthCloud: add(setup_image(p, node)); break;
+      // ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
+      case T::LaserScan: p.pub = node.nh().advertise<sensor_msgs::LaserScan>(op.topic, op.queue); break;
+      case T::PointCloud: p.pub = node.nh().advertise<sensor_msgs::PointCloud>(op.topic, op.queue); break;
+      case T::LidarCloud: p.pub = node.nh().advertise<sensor_msgs::PointCloud2>(op.topic, op.queue); break;
+      case T::Range: p.pub = node.nh().advertise<sensor_msgs::Range>(op.topic, op.queue); break;
+      case T::Imu: p.pub = node.nh().advertise<sensor_msgs::Imu>(op.topic, op.queue); break;
+      case T::NavSatFix: p.pub = node.nh().advertise<sensor_msgs::NavSatFix>(op.topic, op.queue); break;
+      case T::Vector3: p.pub = node.nh().advertise<geometry_msgs::Vector3Stamped>(op.topic, op.queue); break;
+      case T::MagneticField: p.pub = node.nh().advertise<sensor_msgs::MagneticField>(op.topic, op.queue); break;
+      case T::Wrench: p.pub = node.nh().advertise<geometry_msgs::WrenchStamped>(op.topic, op.queue); break;
+      case T::Contacts: p.pub = node.nh().advertise<gazebo_msgs::ContactsState>(op.topic, op.queue); break;
+      case T::Transform: add("TF " + p.frame + " -> " + p.child_frame); break;
     }
+    // the sensors' ports: the topic and frame for the log line (the cameras' setup_image says its own words)
+    const bool image = op.type == T::Image || op.type == T::CameraInfo || op.type == T::DepthImage ||
+                       op.type == T::DepthCloud;
+    if (p.pub && op.type != T::Odometry && op.type != T::JointStates && !image)
+      add(p.pub.getTopic() + (p.frame.empty() ? std::string() : " (frame " + p.frame + ")"));
     ports_.push_back(std::move(p));
   }
   // ---- cameras: a camera_info sent only with its frame's image finds that image's port
@@ -79,8 +251,11 @@ std::string OutputPorts::setup(const car_sim::PluginInfo& plugin, const car_sim:
 }
 
 bool OutputPorts::listened() const {
-  for (const Port& p : ports_)
+  for (const Port& p : ports_) {
     if (p.pub && p.pub.getNumSubscribers() > 0) return true;
+    // TF has no subscriber count: a port that only sends a transform always has listeners
+    if (p.port.type == car_sim::SampleType::Transform) return true;
+  }
   return false;
 }
 
@@ -99,6 +274,8 @@ uint32_t OutputPorts::parts() const {
 void OutputPorts::publish(std::shared_ptr<const car_sim::Output> owned, NodeContext& node) {
   const car_sim::Output& out = *owned;
   const ros::Time stamp = node.stamp(out.tick);
+  std_msgs::Header header;
+  header.stamp = stamp;
   car_sim::OdometrySample o;
   const bool has_odometry = out.odometry_sample(&o);
   static const std::vector<car_sim::JointState> kNone;
@@ -106,6 +283,7 @@ void OutputPorts::publish(std::shared_ptr<const car_sim::Output> owned, NodeCont
   const std::vector<car_sim::JointState>& joints = sample ? *sample : kNone;
   using T = car_sim::SampleType;
   for (Port& p : ports_) {
+    header.frame_id = p.frame;
     switch (p.port.type) {
       case T::Odometry: {
         if (!has_odometry) break;
@@ -165,6 +343,73 @@ void OutputPorts::publish(std::shared_ptr<const car_sim::Output> owned, NodeCont
       case T::CameraInfo:
       case T::DepthImage:
       case T::DepthCloud: publish_image(p, owned, stamp, node); break;
+      // ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
+      case T::LaserScan:
+        if (const auto* s = out.laser_scan_sample()) publish(p, to_msg(*s), header, node);
+        break;
+      case T::PointCloud:
+        if (const auto* s = out.point_cloud_sample()) publish(p, to_msg(*s), header, node);
+        break;
+      case T::LidarCloud:
+        if (const auto* s = out.lidar_cloud_sample()) publish(p, to_msg(*s), header, node);
+        break;
+      case T::Range: {
+        const auto* s = out.range_sample();
+        if (!s) break;
+        // at most one per min_period of sim time (publish when now - last >= min_period, as upstream); a stamp
+        // going backwards (a reset) restarts the count
+        if (p.port.min_period > 0 && stamp >= p.last && !p.last.isZero() &&
+            (stamp - p.last).toSec() < p.port.min_period - 1e-9)
+          break;
+        p.last = stamp;
+        publish(p, to_msg(*s), header, node);
+        break;
+      }
+      case T::Imu: {
+        car_sim::ImuSample s;
+        if (out.imu_sample(p.port.name, &s)) publish(p, to_msg(s, p.port), header, node);
+        break;
+      }
+      case T::NavSatFix:
+        if (const auto* s = out.nav_sat_fix_sample()) publish(p, to_msg(*s), header, node);
+        break;
+      case T::Vector3: {
+        Eigen::Vector3d v;
+        if (!out.vector3_sample(&v)) break;
+        geometry_msgs::Vector3Stamped m;
+        m.vector = to_vector3(v);
+        publish(p, std::move(m), header, node);
+        break;
+      }
+      case T::MagneticField: {
+        Eigen::Vector3d v;
+        if (!out.vector3_sample(&v)) break;
+        sensor_msgs::MagneticField m;
+        m.magnetic_field = to_vector3(v);
+        publish(p, std::move(m), header, node);
+        break;
+      }
+      case T::Wrench: {
+        const car_sim::Wrench* w = out.wrench_sample();
+        if (!w) break;
+        geometry_msgs::WrenchStamped m;
+        m.wrench = to_wrench(*w);
+        publish(p, std::move(m), header, node);
+        break;
+      }
+      case T::Contacts:
+        if (const auto* s = out.contacts_sample()) node.publish(p.pub, to_msg(*s, header));
+        break;
+      case T::Transform: {
+        Eigen::Isometry3d pose;
+        if (!out.pose_sample(&pose)) break;
+        geometry_msgs::TransformStamped t;
+        t.header = header;
+        t.child_frame_id = p.child_frame;
+        t.transform = to_transform(pose);
+        node.send_tf(std::move(t));
+        break;
+      }
     }
   }
 }

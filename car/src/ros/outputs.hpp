@@ -1,10 +1,13 @@
 // The output half of the ROS bridge for the kinds whose outputs have ports: one converter per sample type
 // (Odometry -> nav_msgs/Odometry and its TF, JointStates -> sensor_msgs/JointState, JointTransforms -> TF; the
-// camera types in outputs_image.cpp). Frames get the tf_prefix of the port's namespace (gazebo_ros resolveTF).
-// Names no plug-in kind.
+// sensors' LaserScan, PointCloud, LidarCloud -> PointCloud2, Range, Imu, NavSatFix, Vector3 -> Vector3Stamped,
+// MagneticField, Wrench -> WrenchStamped, Contacts -> gazebo_msgs/ContactsState, Transform -> TF; the camera types
+// in outputs_image.cpp). Frames get the tf_prefix of the port's namespace (gazebo_ros resolveTF) where the port
+// asks for it. Names no plug-in kind.
 #pragma once
 
 #include <ros/ros.h>
+#include <std_msgs/Header.h>
 
 #include <memory>
 #include <string>
@@ -33,10 +36,17 @@ class OutputPorts {
     ros::Publisher pub;
     std::string prefix;              // tf_prefix of the port's namespace ("" = none)
     std::string frame, child_frame;  // as published
+    // the last message's stamp: a port with a min_period (range's throttle), and a CameraInfo port's period
+    ros::Time last;
     // ---- cameras
-    ros::Time last;       // CameraInfo: when the last one went out
     int image_of = -1;    // CameraInfo with_image: the index of its frame's Image port
   };
+  // A message with the port's header, on its publisher.
+  template <class M>
+  static void publish(const Port& p, M msg, const std_msgs::Header& header, NodeContext& node) {
+    msg.header = header;
+    node.publish(p.pub, std::move(msg));
+  }
   // ---- cameras (outputs_image.cpp): the publisher of a port of a camera sample type, with the log's words; one
   // frame's message on it
   std::string setup_image(Port& p, NodeContext& node);

@@ -150,7 +150,7 @@ struct World::Impl : WorldAccess {
     i.info.rate = i.plugin->update_rate();
     i.info.lazy = kind->lazy;
     if (kind->inputs) i.info.inputs = kind->inputs(c, r.info.name);
-    if (kind->outputs) i.info.outputs = kind->outputs(c, r.info.name);
+    if (kind->outputs) i.info.outputs = kind->outputs(c, r.info.name, env);
     return i;
   }
 

@@ -102,6 +102,10 @@ const PluginKind& block_laser_kind() {
     k.ignored = {{"alwaysOn", ""}};
     k.lazy = true;
     k.output_group = "clouds";
+    // sensor_msgs/PointCloud on topicName in frameName, queue 1
+    k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
+      return std::vector<OutputPort>{sensor_port(c, robot, "cloud", SampleType::PointCloud, "topicName", c.text("frameName"), 1)};
+    };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {
       return std::make_unique<BlockLaser>(c, robot, seed);

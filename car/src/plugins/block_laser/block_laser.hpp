@@ -9,12 +9,12 @@
 
 namespace car_sim {
 
-struct BlockLaserOut : Output {
+// points: x y z per ray [m], sensor frame; intensities: the channel, laser_retro of the hit surface (+ noise)
+struct BlockLaserOut : Output, PointCloudSample {
   std::string sensor;
   int rows = 0, cols = 0;          // vertical x horizontal samples; point (row j, col i) at index i + j cols
-  std::vector<float> points;       // x y z per ray [m], sensor frame
-  std::vector<float> intensities;  // the channel: laser_retro of the hit surface (+ noise)
   void visit(FieldVisitor& v) const override;
+  const PointCloudSample* point_cloud_sample() const override { return this; }
 };
 
 const PluginKind& block_laser_kind();

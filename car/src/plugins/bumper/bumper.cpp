@@ -114,6 +114,11 @@ const PluginKind& bumper_kind() {
     k.ignored = {{"alwaysOn", ""}, {"updateRate", "the contact sensor's <update_rate> sets the rate"}};
     k.lazy = true;
     k.output_group = "contacts";
+    // gazebo_msgs/ContactsState on bumperTopicName, header frame frameName, queue 1
+    k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
+      return std::vector<OutputPort>{
+          sensor_port(c, robot, "contacts", SampleType::Contacts, "bumperTopicName", c.text("frameName"), 1)};
+    };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t) -> std::unique_ptr<Plugin> {
       return std::make_unique<Bumper>(c, robot);

@@ -9,19 +9,11 @@
 
 namespace car_sim {
 
-// One pair of bodies in contact: gazebo_msgs/ContactState's fields.
-struct ContactPair {
-  std::string collision1, collision2;   // "model::link::collision" (this sensor's), "model::link" (the other)
-  std::vector<Wrench> wrenches;         // [N], world frame: force on collision1 at each point (torque 0)
-  Wrench total;                         // sum of wrenches
-  std::vector<Eigen::Vector3d> positions;  // [m], world frame
-  std::vector<Eigen::Vector3d> normals;    // unit, world frame, from collision2 into collision1
-  std::vector<double> depths;              // [m]
-};
-
+// ContactPair (one pair of bodies in contact) is a sample type of the ports (car_sim/ports.hpp).
 struct ContactsOut : Output {
   std::vector<ContactPair> states;
   void visit(FieldVisitor& v) const override;
+  const std::vector<ContactPair>* contacts_sample() const override { return &states; }
 };
 
 // The link a contact sensor's <contact><collision> names: "LINK_collision", "LINK_collision_N", or a lumped

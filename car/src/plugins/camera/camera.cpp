@@ -602,7 +602,7 @@ const PluginKind& camera_kind() {
     k.lazy = true;
     k.output_group = "images";
     k.finish = finish_camera;
-    k.outputs = [](const PluginConfig& c, const std::string& robot) {
+    k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
       return camera_ports(c, robot, "", 0, c.number("hackBaseline"));
     };
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {

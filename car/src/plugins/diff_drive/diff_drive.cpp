@@ -222,7 +222,7 @@ const PluginKind& diff_drive_kind() {
     k.output_group = "odometry";
     k.inputs = topic_input("cmd_vel", InputType::Twist, "commandTopic", 10, kLinearX | kAngularZ);
     // odom (queue 100; none at all with publishTf false, as upstream) and its TF after it; the wheels on request
-    k.outputs = [](const PluginConfig& c, const std::string& robot) {
+    k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
       std::vector<OutputPort> ports = {
           odometry_port(c, robot, "odometryTopic", 100, c.flag("publishOdomTF") ? TfOrder::After : TfOrder::None)};
       if (!c.flag("publishTf")) ports[0].topic.clear();

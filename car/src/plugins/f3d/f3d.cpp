@@ -54,6 +54,10 @@ const PluginKind& f3d_kind() {
     k.ignored = {{"alwaysOn", ""}, {"updateRate", "f3d publishes every step while subscribed"}};
     k.lazy = true;
     k.output_group = "wrenches";
+    // geometry_msgs/WrenchStamped on topicName, header frame frameName, queue 1
+    k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
+      return std::vector<OutputPort>{sensor_port(c, robot, "wrench", SampleType::Wrench, "topicName", c.text("frameName"), 1)};
+    };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string&, uint64_t) -> std::unique_ptr<Plugin> {
       return std::make_unique<F3d>(c);

@@ -9,6 +9,7 @@ namespace car_sim {
 struct WrenchOut : Output {
   Wrench wrench;  // [N], [N m]; the frame is the kind's (f3d: world; ft_sensor: the child link)
   void visit(FieldVisitor& v) const override;
+  const Wrench* wrench_sample() const override { return &wrench; }
 };
 
 const PluginKind& f3d_kind();

@@ -73,6 +73,10 @@ const PluginKind& ft_sensor_kind() {
     k.ignored = {{"alwaysOn", ""}};
     k.lazy = true;
     k.output_group = "wrenches";
+    // geometry_msgs/WrenchStamped on topicName, header frame the joint's child link, queue 1
+    k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
+      return std::vector<OutputPort>{sensor_port(c, robot, "wrench", SampleType::Wrench, "topicName", c.link, 1)};
+    };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {
       return std::make_unique<FtSensor>(c, robot, seed);

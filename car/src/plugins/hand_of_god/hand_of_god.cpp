@@ -116,7 +116,8 @@ const PluginKind& hand_of_god_kind() {
         {"linkName", T, "", ""},
     };
     k.ignored = {{"alwaysOn", ""}, {"updateRate", ""}};
-    // its pushes run every step regardless; only the actual-pose output is lazy (the ROS adapter always listens)
+    // its pushes run every step regardless; only the actual-pose output is lazy (TF has no subscriber count: a
+    // Transform port is always listened)
     k.lazy = true;
     k.output_group = "poses";
     // the target is read from TF: world -> <frameId>_desired
@@ -129,6 +130,16 @@ const PluginKind& hand_of_god_kind() {
       p.frame = f + "_desired";
       p.parent_frame = "world";
       return std::vector<InputPort>{p};
+    };
+    // the link's pose on TF: world -> <frameId>_actual
+    k.outputs = [](const PluginConfig& c, const std::string&, const Environment&) {
+      OutputPort p;
+      p.name = "actual";
+      p.type = SampleType::Transform;
+      p.frame = "world";
+      p.child_frame = strip_frame(c.text("frameId")) + "_actual";
+      p.tf_prefix = false;
+      return std::vector<OutputPort>{p};
     };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string&, uint64_t) -> std::unique_ptr<Plugin> {

@@ -8,12 +8,15 @@
 
 namespace car_sim {
 
-struct GpsOut : Output {
-  double latitude = 0, longitude = 0, altitude = 0;  // [deg], [deg], [m]
-  int status = 0, service = 0;                       // sensor_msgs/NavSatStatus
-  Eigen::Vector3d position_variance = Eigen::Vector3d::Zero();  // [m^2] diagonal (drift^2 + noise^2)
-  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();           // [m/s]
+// The fix (position_variance: drift^2 + noise^2) and the velocity.
+struct GpsOut : Output, NavSatFixSample {
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // [m/s]
   void visit(FieldVisitor& v) const override;
+  const NavSatFixSample* nav_sat_fix_sample() const override { return this; }
+  bool vector3_sample(Eigen::Vector3d* v) const override {
+    *v = velocity;
+    return true;
+  }
 };
 
 const PluginKind& hector_gps_kind();

@@ -132,6 +132,39 @@ void finish(ResolveContext& ctx) {
   }
 }
 
+// sensor_msgs/Imu on topicName and the biases on biasTopicName (each only when named), queue 10, in frameId.
+// Covariances of the measurement as upstream: rate and accel noise squared (a non-zero gaussianNoise replaces
+// both), orientation roll/pitch accel noise^2 / g^2 (-1 without gravity), yaw the yaw noise squared; the biases
+// carry none.
+std::vector<OutputPort> outputs(const PluginConfig& c, const std::string& robot, const Environment& env) {
+  hector::SensorModel<3> accel, rate;
+  hector::SensorModel<1> yaw;
+  accel.load(c, "accel");
+  rate.load(c, "rate");
+  yaw.load(c, "yaw");
+  if (c.number("gaussianNoise") != 0.0) {
+    accel.gaussian_noise.setConstant(c.number("gaussianNoise"));
+    rate.gaussian_noise.setConstant(c.number("gaussianNoise"));
+  }
+  const Eigen::Vector3d a = accel.gaussian_noise, w = rate.gaussian_noise;
+  const double g = env.gravity.norm();  // [m/s^2]
+  std::vector<OutputPort> ports;
+  if (!c.text("topicName").empty()) {
+    OutputPort p = sensor_port(c, robot, "imu", SampleType::Imu, "topicName", c.text("frameId"), 10);
+    for (int i = 0; i < 3; ++i) {
+      p.angular_velocity_covariance[i] = w[i] * w[i];
+      p.linear_acceleration_covariance[i] = a[i] * a[i];
+    }
+    p.orientation_covariance[0] = g > 0 ? a.x() * a.x() / (g * g) : -1;
+    p.orientation_covariance[1] = g > 0 ? a.y() * a.y() / (g * g) : -1;
+    p.orientation_covariance[2] = yaw.gaussian_noise[0] * yaw.gaussian_noise[0];
+    ports.push_back(p);
+  }
+  if (!c.text("biasTopicName").empty())
+    ports.push_back(sensor_port(c, robot, "bias", SampleType::Imu, "biasTopicName", c.text("frameId"), 10));
+  return ports;
+}
+
 }  // namespace
 
 void HectorImuOut::visit(FieldVisitor& v) const {
@@ -167,6 +200,7 @@ const PluginKind& hector_imu_kind() {
                  {"serviceName", "the calibrate and set_*_bias services are not provided"}};
     k.lazy = true;
     k.output_group = "imus";
+    k.outputs = outputs;
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {
       return std::make_unique<HectorImu>(c, robot, seed);

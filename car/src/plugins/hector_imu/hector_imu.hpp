@@ -12,6 +12,12 @@ struct HectorImuOut : ImuOut {
   Eigen::Vector3d rate_bias = Eigen::Vector3d::Zero();                     // [rad/s]
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();                    // [m/s^2]
   void visit(FieldVisitor& v) const override;
+  // port "bias": the biases as an Imu sample (orientation_error, rate_bias, accel_bias); else the measurement
+  bool imu_sample(const std::string& port, ImuSample* s) const override {
+    if (port != "bias") return ImuOut::imu_sample(port, s);
+    *s = {orientation_error, rate_bias, accel_bias};
+    return true;
+  }
 };
 
 const PluginKind& hector_imu_kind();

@@ -97,6 +97,12 @@ const PluginKind& hector_magnetic_kind() {
     k.ignored = {{"alwaysOn", ""}, {"updateOffset", "not simulated"}};
     k.lazy = true;
     k.output_group = "magnetic";
+    // geometry_msgs/Vector3Stamped, or sensor_msgs/MagneticField with useMagneticFieldMsgs, on topicName in frameId,
+    // queue 1
+    k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
+      const SampleType type = c.flag("useMagneticFieldMsgs") ? SampleType::MagneticField : SampleType::Vector3;
+      return std::vector<OutputPort>{sensor_port(c, robot, "magnetic", type, "topicName", c.text("frameId"), 1)};
+    };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {
       return std::make_unique<HectorMagnetic>(c, robot, seed);

@@ -11,6 +11,10 @@ namespace car_sim {
 struct MagneticOut : Output {
   Eigen::Vector3d field = Eigen::Vector3d::Zero();  // the body frame (magnitude's unit, default 1)
   void visit(FieldVisitor& v) const override;
+  bool vector3_sample(Eigen::Vector3d* v) const override {
+    *v = field;
+    return true;
+  }
 };
 
 const PluginKind& hector_magnetic_kind();

@@ -7,12 +7,15 @@
 
 namespace car_sim {
 
-struct ImuOut : Output {
+// The sensor frame's orientation in the world, its angular velocity [rad/s] and its linear acceleration [m/s^2],
+// gravity included, both in the sensor frame.
+struct ImuOut : Output, ImuSample {
   std::string sensor;
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // sensor frame in the world
-  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();       // [rad/s], sensor frame
-  Eigen::Vector3d linear_acceleration = Eigen::Vector3d::Zero();    // [m/s^2], sensor frame, gravity included
   void visit(FieldVisitor& v) const override;
+  bool imu_sample(const std::string& port, ImuSample* s) const override {
+    *s = *this;
+    return true;
+  }
 };
 
 const PluginKind& imu_kind();

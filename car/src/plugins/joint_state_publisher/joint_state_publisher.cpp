@@ -88,7 +88,7 @@ const PluginKind& joint_state_publisher_kind() {
     k.lazy = true;
     k.output_group = "joint_states";
     // sensor_msgs/JointState on <namespace>/joint_states, queue 1000 as upstream
-    k.outputs = [](const PluginConfig& c, const std::string& robot) {
+    k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
       return std::vector<OutputPort>{joint_states_port(c, robot, 1000)};
     };
     k.finish = finish;

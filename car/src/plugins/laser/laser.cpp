@@ -220,6 +220,10 @@ const PluginKind& laser_kind() {
     k.ignored = {{"alwaysOn", ""}, {"updateRate", ""}, {"gaussianNoise", ""}, {"hokuyoMinIntensity", ""}};
     k.lazy = true;
     k.output_group = "scans";
+    // sensor_msgs/LaserScan on topicName in frameName, queue 10
+    k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
+      return std::vector<OutputPort>{sensor_port(c, robot, "scan", SampleType::LaserScan, "topicName", c.text("frameName"), 10)};
+    };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {
       return std::make_unique<Laser>(c, robot, seed);

@@ -8,13 +8,10 @@
 
 namespace car_sim {
 
-struct LaserScanOut : Output {
+struct LaserScanOut : Output, LaserScanSample {
   std::string sensor;
-  float angle_min = 0, angle_max = 0, angle_increment = 0;  // [rad]
-  float range_min = 0, range_max = 0;                       // [m]
-  std::vector<float> ranges;       // [m]; +inf: no hit within range_max
-  std::vector<float> intensities;  // laser_retro of the hit surface
   void visit(FieldVisitor& v) const override;
+  const LaserScanSample* laser_scan_sample() const override { return this; }
 };
 
 const PluginKind& laser_kind();

@@ -208,7 +208,7 @@ const PluginKind& multicamera_kind() {
     k.finish = finish;
     // per side that has a camera, its image and camera_info under <cameraName>/<side> (the frames in the same
     // order); the right camera's P carries -f hackBaseline
-    k.outputs = [](const PluginConfig& c, const std::string& robot) {
+    k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
       std::vector<OutputPort> ports;
       size_t frame = 0;
       for (const char* side : kSides) {

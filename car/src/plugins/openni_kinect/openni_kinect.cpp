@@ -47,7 +47,9 @@ const PluginKind& openni_kinect_kind() {
     k.lazy = true;
     k.output_group = "images";
     k.finish = finish;
-    k.outputs = depth_camera_ports;
+    k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
+      return depth_camera_ports(c, robot);
+    };
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {
       return std::make_unique<CameraPlugin>(c, robot, seed, true);
     };

@@ -109,7 +109,7 @@ const PluginKind& p3d_kind() {
     k.lazy = true;
     k.output_group = "poses";
     // nav_msgs/Odometry on topicName (queue 100): frameName -> bodyName, gaussianNoise^2 on every diagonal entry
-    k.outputs = [](const PluginConfig& c, const std::string& robot) {
+    k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
       OutputPort p;
       p.name = "odom";
       p.type = SampleType::Odometry;

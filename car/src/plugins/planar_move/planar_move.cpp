@@ -117,7 +117,7 @@ const PluginKind& planar_move_kind() {
     k.finish = finish;
     k.inputs = topic_input("cmd_vel", InputType::Twist, "commandTopic", 1, kLinearX | kLinearY | kAngularZ);
     // odom with its TF sent first
-    k.outputs = [](const PluginConfig& c, const std::string& robot) {
+    k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
       return std::vector<OutputPort>{odometry_port(c, robot, "odometryTopic", 1, TfOrder::Before)};
     };
     k.make = [](const PluginConfig& c, const std::string&, uint64_t) -> std::unique_ptr<Plugin> {

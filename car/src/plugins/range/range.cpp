@@ -93,6 +93,14 @@ const PluginKind& range_kind() {
     k.ignored = {{"alwaysOn", ""}};
     k.lazy = true;
     k.output_group = "ranges";
+    // sensor_msgs/Range on topicName in frameName, queue 1, at most updateRate per second of sim time (0 = every
+    // sensor update)
+    k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
+      OutputPort p = sensor_port(c, robot, "range", SampleType::Range, "topicName", c.text("frameName"), 1);
+      const double r = c.number("updateRate");
+      p.min_period = r > 0 ? 1.0 / r : 0.0;
+      return std::vector<OutputPort>{p};
+    };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {
       return std::make_unique<Range>(c, robot, seed);

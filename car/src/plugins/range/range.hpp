@@ -7,13 +7,12 @@
 
 namespace car_sim {
 
-struct RangeOut : Output {
+// radiation: 0 ULTRASOUND, 1 INFRARED; field_of_view: the plug-in's <fov>; min_range / max_range: the sensor's
+// range.min / range.max; range: max_range when nothing is in view. Also hector_sonar's output.
+struct RangeOut : Output, RangeSample {
   std::string sensor;
-  int radiation = 0;             // sensor_msgs/Range: 0 ULTRASOUND, 1 INFRARED
-  float field_of_view = 0;       // [rad], the plug-in's <fov>
-  float min_range = 0, max_range = 0;  // [m], the sensor's range.min / range.max
-  float range = 0;               // [m], max_range when nothing is in view
   void visit(FieldVisitor& v) const override;
+  const RangeSample* range_sample() const override { return this; }
 };
 
 const PluginKind& range_kind();

@@ -138,7 +138,7 @@ const PluginKind& skid_steer_drive_kind() {
     k.finish = finish;
     k.inputs = topic_input("cmd_vel", InputType::Twist, "commandTopic", 1, kLinearX | kAngularZ);
     // odom with covariance_x/_y/_yaw on pose and twist; its TF, sent first, only with broadcastTF
-    k.outputs = [](const PluginConfig& c, const std::string& robot) {
+    k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
       OutputPort odom = odometry_port(c, robot, "odometryTopic", 1, c.flag("broadcastTF") ? TfOrder::Before : TfOrder::None,
                                       c.number("covariance_x"), c.number("covariance_y"), c.number("covariance_yaw"));
       odom.twist_covariance = odom.pose_covariance;

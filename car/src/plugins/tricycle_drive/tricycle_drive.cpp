@@ -185,7 +185,7 @@ const PluginKind& tricycle_drive_kind() {
     // angular.z is the steering angle [rad]
     k.inputs = topic_input("cmd_vel", InputType::Twist, "commandTopic", 1, kLinearX | kAngularZ);
     // odom with its TF sent first; the wheels on request (joint states with queue 1000, as upstream)
-    k.outputs = [](const PluginConfig& c, const std::string& robot) {
+    k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
       std::vector<OutputPort> ports = {odometry_port(c, robot, "odometryTopic", 1, TfOrder::Before)};
       if (c.flag("publishWheelJointState")) ports.push_back(joint_states_port(c, robot, 1000));
       if (c.flag("publishWheelTF")) ports.push_back(wheel_tf_port(c, robot));

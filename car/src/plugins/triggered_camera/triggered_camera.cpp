@@ -50,7 +50,7 @@ const PluginKind& triggered_camera_kind() {
       return std::vector<InputPort>{p};
     };
     // upstream publishes image and camera_info only while the image topic has subscribers
-    k.outputs = [](const PluginConfig& c, const std::string& robot) {
+    k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
       std::vector<OutputPort> ports = camera_ports(c, robot, "", 0, c.number("hackBaseline"));
       ports[1].image.with_image = true;
       return ports;

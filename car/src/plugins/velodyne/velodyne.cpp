@@ -112,6 +112,14 @@ const PluginKind& velodyne_kind() {
                  {"staticFrameName", "the lmark1 fork's transformed copy of the cloud is not simulated"}};
     k.lazy = true;
     k.output_group = "velodyne";
+    // sensor_msgs/PointCloud2 on topicName, queue 1, frame tf::resolve(robotNamespace, frameName): an absolute frame
+    // loses its '/', a relative one goes under the namespace (none for the global one)
+    k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
+      const std::string ns = plugin_robot_namespace(c, robot);
+      const std::string& f = c.text("frameName");
+      const std::string frame = !f.empty() && f[0] == '/' ? f.substr(1) : ns.empty() ? f : ns + "/" + f;
+      return std::vector<OutputPort>{sensor_port(c, robot, "points", SampleType::LidarCloud, "topicName", frame, 1)};
+    };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {
       return std::make_unique<Velodyne>(c, robot, seed);

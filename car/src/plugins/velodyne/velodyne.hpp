@@ -9,12 +9,12 @@
 
 namespace car_sim {
 
-struct VelodyneOut : Output {
+// points: x y z per kept ray [m], sensor frame, horizontal index outer, ring inner; intensities: laser_retro of the
+// hit surface; rings: vertical index j, 0 = the lowest beam
+struct VelodyneOut : Output, LidarCloudSample {
   std::string sensor;
-  std::vector<float> points;       // x y z per kept ray [m], sensor frame; horizontal index outer, ring inner
-  std::vector<float> intensities;  // laser_retro of the hit surface
-  std::vector<uint16_t> rings;     // vertical index j, 0 = the lowest beam
   void visit(FieldVisitor& v) const override;
+  const LidarCloudSample* lidar_cloud_sample() const override { return this; }
 };
 
 const PluginKind& velodyne_kind();
