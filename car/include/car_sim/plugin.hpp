@@ -41,6 +41,7 @@ struct Output {
   virtual ~Output() = default;
   std::string robot, plugin;  // stamped by the world
   uint64_t tick = 0;          // stamped by the world
+  std::string port;           // the one output port it is for ("": every port of its instance)
   virtual void visit(FieldVisitor& v) const = 0;
   // Its samples for the output ports' converters (include/car_sim/ports.hpp): false / nullptr when it has none.
   virtual bool odometry_sample(OdometrySample* s) const { return false; }
@@ -61,6 +62,12 @@ struct Output {
   virtual const std::vector<ContactPair>* contacts_sample() const { return nullptr; }
   // Transform ports: a frame in its parent frame
   virtual bool pose_sample(Eigen::Isometry3d* pose) const { return false; }
+  // JointStates ports with_effort: one effort per joint of joint_states_sample [N m] or [N]
+  virtual const std::vector<double>* joint_efforts_sample() const { return nullptr; }
+  // ---- ros_control's controllers ----
+  virtual const ControllerStateSample* controller_state_sample() const { return nullptr; }
+  virtual const TrajectoryStateSample* trajectory_state_sample() const { return nullptr; }
+  virtual const GoalResultSample* goal_result_sample() const { return nullptr; }
 };
 using OutputPtr = std::unique_ptr<Output>;
 using OutputQueue = std::vector<OutputPtr>;
@@ -183,6 +190,16 @@ class Plugin {
   // A value for one of its input ports (World::command has checked that it fits the port and is finite); notes
   // for the log go to *result. Between steps only.
   virtual void command(const std::string& port, const Command& value, CommandResult* result) {}
+  // A call to one of its services (PluginInfo::services), between steps.
+  virtual CallResponse call(const std::string& service, const CallRequest& request) {
+    CallResponse r;
+    r.ok = false;
+    r.errors.push_back("no service '" + service + "'");
+    return r;
+  }
+  // Ports that come and go at run time (ros_control's controllers), after its kind's own; asked again after every
+  // call whose response says ports_changed.
+  virtual void dynamic_ports(std::vector<InputPort>* inputs, std::vector<OutputPort>* outputs) const {}
 };
 
 // What the resolver hands a kind's finish(): the plug-in being resolved, its model and where to report.
@@ -233,6 +250,8 @@ struct PluginKind {
   // made), topics, frames and covariances resolved (none: its outputs have a ROS adapter instead).
   std::function<std::vector<OutputPort>(const PluginConfig& config, const std::string& robot, const Environment& env)>
       outputs;
+  // Its services for a resolved configuration on a robot, names resolved (none: no services).
+  std::function<std::vector<ServicePort>(const PluginConfig& config, const std::string& robot)> services;
   // An instance for a resolved configuration. seed: the world's noise seed.
   std::function<std::unique_ptr<Plugin>(const PluginConfig& config, const std::string& robot, uint64_t seed)> make;
 };

@@ -8,6 +8,8 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <map>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -27,6 +29,8 @@ struct Twist {
 struct TrajectoryPoint {
   std::vector<double> positions;  // [rad] or [m], one per joint name
   double time_from_start = 0.0;   // [s]; upstream uses it as the wait after this point
+  // [rad/s] or [m/s], [rad/s^2] or [m/s^2]: empty when not given (gazebo_ros_joint_pose_trajectory ignores them)
+  std::vector<double> velocities, accelerations;
 };
 
 struct JointTrajectory {
@@ -44,10 +48,32 @@ struct PoseCommand {
 // A bare event (std_msgs/Empty): e.g. render one camera frame.
 struct Trigger {};
 
-// One value for an input port; its alternative must match the port's type.
-using Command = std::variant<Twist, Wrench, JointTrajectory, PoseCommand, Trigger>;
+// One number (std_msgs/Float64): a joint controller's command [rad], [rad/s] or [N m].
+struct Float64 {
+  double data = 0.0;
+};
 
-enum class InputType { Twist, Wrench, JointTrajectory, Pose, Trigger };
+// Numbers (std_msgs/Float64MultiArray's data): a joint group controller's commands, one per joint.
+struct Float64Array {
+  std::vector<double> data;
+};
+
+// A trajectory goal of an action (control_msgs/FollowJointTrajectory), or the cancel of one. The skin numbers its
+// goals; the goal's end comes back as a GoalResult sample with that id.
+struct TrajectoryGoal {
+  uint64_t id = 0;
+  bool cancel = false;                    // cancel goal `id` (the other fields are unused)
+  JointTrajectory trajectory;
+  // tolerances by joint name [rad] or [m]: 0 unchecked, < 0 none
+  std::map<std::string, double> path_position, goal_position;
+  std::optional<double> goal_time_tolerance;  // [s]; none: the controller's own
+};
+
+// One value for an input port; its alternative must match the port's type (the same order as InputType).
+using Command =
+    std::variant<Twist, Wrench, JointTrajectory, PoseCommand, Trigger, Float64, Float64Array, TrajectoryGoal>;
+
+enum class InputType { Twist, Wrench, JointTrajectory, Pose, Trigger, Float64, Float64Array, TrajectoryGoal };
 
 // The components of a Twist a port reads; the others are dropped before the value is checked.
 enum TwistAxes : uint32_t {
@@ -70,7 +96,11 @@ struct InputPort {
 // What became of one command.
 struct CommandResult {
   bool accepted = true;  // it passed the world's checks and went to the plug-in
-  std::string reason;    // rejected: why ("a non-finite value (linear.x nan, angular.z 0)")
+  std::string reason;    // rejected or refused: why ("a non-finite value (linear.x nan, angular.z 0)")
+  // The plug-in refused it: a TrajectoryGoal is rejected with `code` (control_msgs/FollowJointTrajectoryResult's
+  // error codes) and `reason`.
+  bool refused = false;
+  int code = 0;
   // Accepted or not, what the skin should log, as upstream logs it (a point skipped, an unknown joint).
   struct Note {
     bool error = false;  // an error (else a warning)
@@ -101,6 +131,10 @@ enum class SampleType {
   Wrench,         // geometry_msgs/WrenchStamped
   Contacts,       // gazebo_msgs/ContactsState
   Transform,      // a pose on TF only: frame -> child_frame
+  // ---- ros_control's controllers ----
+  ControllerState,  // control_msgs/JointControllerState (ControllerStateSample)
+  TrajectoryState,  // control_msgs/JointTrajectoryControllerState (TrajectoryStateSample)
+  GoalResult,       // the end of a TrajectoryGoal (GoalResultSample): the action's result, on no topic of its own
 };
 
 // A pose with a twist: a frame in its parent frame, and the velocity of its origin.
@@ -154,6 +188,8 @@ struct OutputPort {
   std::string child_frame;     // child_frame_id as written
   // false: no tf_prefix; the frame only loses its leading '/'s and the child frame stays as written (p3d)
   bool tf_prefix = true;
+  bool frames_as_written = false;  // both frames exactly as written, no tf_prefix (ros_controllers)
+  bool with_effort = false;        // JointStates: each joint's effort too (joint_state_controller)
   TfOrder tf = TfOrder::None;  // Odometry: also the transform frame -> child_frame
   std::array<double, 6> pose_covariance{};   // the diagonal (x, y, z, roll, pitch, yaw)
   std::array<double, 6> twist_covariance{};
@@ -228,6 +264,73 @@ struct ContactPair {
   std::vector<Eigen::Vector3d> positions;  // [m], world frame
   std::vector<Eigen::Vector3d> normals;    // unit, world frame, from collision2 into collision1
   std::vector<double> depths;              // [m]
+};
+
+// ---- ros_control's controllers ----
+
+// control_msgs/JointControllerState of the PID joint controllers.
+struct ControllerStateSample {
+  double set_point = 0, process_value = 0, process_value_dot = 0, error = 0, time_step = 0, command = 0;
+  double p = 0, i = 0, d = 0, i_clamp = 0;  // the PID's gains and its integral clamp
+  bool antiwindup = false;
+};
+
+// joint_trajectory_controller's state: desired and actual per joint (the error is desired - actual).
+struct TrajectoryStateSample {
+  std::vector<std::string> joints;
+  std::vector<double> desired_position, desired_velocity, actual_position, actual_velocity;
+};
+
+// How a TrajectoryGoal ended.
+struct GoalResultSample {
+  enum class Status { Succeeded, Canceled, Aborted };
+  uint64_t goal = 0;  // the TrajectoryGoal's id
+  Status status = Status::Succeeded;
+  int error_code = 0;  // control_msgs/FollowJointTrajectoryResult's
+  std::string error_string;
+};
+
+// ---- calls: a plug-in's services (controller_manager's) ----
+
+// The call families (controller_manager_msgs' services).
+enum class CallType {
+  LoadController, UnloadController, SwitchController, ListControllers, ListControllerTypes,
+  ReloadControllerLibraries,
+};
+
+// A service of one plug-in instance, resolved.
+struct ServicePort {
+  std::string name;  // the kind's name for it, e.g. "load_controller"
+  CallType type = CallType::LoadController;
+  std::string topic;  // absolute service name
+  std::string ns;     // LoadController: where the skin reads a controller's parameters (<ns>/<controller name>)
+};
+
+// A controller's configuration: key path ("pid/p", "joints") -> its values (one for a scalar, several for a list),
+// as the parameter server holds them under <ns>/<controller name>/.
+using CallParams = std::map<std::string, std::vector<std::string>>;
+
+// One call's arguments: the fields its family uses.
+struct CallRequest {
+  std::string name;                          // Load-, UnloadController: the controller
+  CallParams params;                         // LoadController: its parameters
+  std::vector<std::string> start, stop;      // SwitchController
+  int strictness = 0;                        // SwitchController: 1 BEST_EFFORT, 2 STRICT
+  bool force_kill = false;                   // ReloadControllerLibraries
+};
+
+struct ControllerStatus {
+  std::string name, type, state;  // state: "running" or "stopped"
+  std::vector<std::pair<std::string, std::vector<std::string>>> claimed;  // (hardware interface, joints)
+};
+
+// What a call did: ok, the lines for the skin's log, and the answers of the List calls.
+struct CallResponse {
+  bool ok = true;
+  std::vector<std::string> errors, infos;  // for the log, as controller_manager logs them
+  std::vector<ControllerStatus> controllers;                  // ListControllers
+  std::vector<std::pair<std::string, std::string>> types;     // ListControllerTypes: (type, base class)
+  bool ports_changed = false;  // the instance's ports changed (a controller came or went): the skin reads them again
 };
 
 // A frame name as tf2 wants it: leading '/'s dropped.

@@ -36,6 +36,7 @@ struct PluginInfo {
   bool lazy = false;            // computed only while active (someone listens)
   std::vector<InputPort> inputs;    // its input ports, topics resolved (the kind's `inputs`)
   std::vector<OutputPort> outputs;  // its output ports, topics and frames resolved (the kind's `outputs`)
+  std::vector<ServicePort> services;  // its services, names resolved (the kind's `services`)
 };
 
 // What a spawned robot is, for the skins: its model, resolved plug-ins and namespace.
@@ -138,6 +139,13 @@ class World {
   // the result says so, for the skin's one warning. Unknown robots, plug-ins and ports, and a value of another
   // type than the port's, throw std::invalid_argument.
   CommandResult command(const std::string& robot, const std::string& plugin, const std::string& port, Command value);
+  // A call to a service of a plug-in instance (PluginInfo::services), between steps. When it changed the
+  // instance's ports (ros_control loaded or unloaded a controller) the response says so and plugin_info() lists
+  // them anew. Unknown robots, plug-ins and services throw std::invalid_argument.
+  CallResponse call(const std::string& robot, const std::string& plugin, const std::string& service,
+                    const CallRequest& request);
+  // One plug-in instance's record, its ports as they are now; throws std::invalid_argument when there is none.
+  const PluginInfo& plugin_info(const std::string& robot, const std::string& plugin) const;
 
   // Every output produced since the last call, in instance order.
   OutputQueue take_outputs();

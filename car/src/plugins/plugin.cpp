@@ -276,6 +276,9 @@ const char* command_noun(InputType type) {
     case InputType::JointTrajectory: return "trajectory";
     case InputType::Pose: return "pose target";
     case InputType::Trigger: return "trigger";
+    case InputType::Float64: return "command";
+    case InputType::Float64Array: return "command";
+    case InputType::TrajectoryGoal: return "trajectory goal";
   }
   return "command";
 }

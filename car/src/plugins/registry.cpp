@@ -1,5 +1,5 @@
 // The plug-in registry: every kind car simulates, one line each. A new kind adds its folder under src/plugins/
-// and one line here (and, for ROS, one line in src/ros/adapters/registry.cpp).
+// and one line here.
 #include <map>
 
 #include "car_sim/plugin.hpp"

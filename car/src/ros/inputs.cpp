@@ -1,17 +1,29 @@
 // The input half of the ROS bridge: ROS messages -> car_sim::Command, by sample type.
 #include "inputs.hpp"
 
+#include <actionlib/server/action_server.h>
+#include <control_msgs/FollowJointTrajectoryAction.h>
 #include <geometry_msgs/Twist.h>
 #include <geometry_msgs/Wrench.h>
 #include <std_msgs/Empty.h>
+#include <std_msgs/Float64.h>
+#include <std_msgs/Float64MultiArray.h>
 #include <trajectory_msgs/JointTrajectory.h>
+
+#include <algorithm>
+#include <map>
 
 #include "conversions.hpp"
 
 namespace car_ros {
 
+using FjtServer = actionlib::ActionServer<control_msgs::FollowJointTrajectoryAction>;
+
 // One input port of one plug-in instance, and what its messages need: the names to command, the subscriber.
 struct InputPorts::Port {
+  ~Port() {
+    if (action) node->drop_goal_sink(port.topic, this);
+  }
   std::string robot, plugin;
   car_sim::InputPort port;
   NodeContext* node = nullptr;
@@ -21,9 +33,13 @@ struct InputPorts::Port {
   std::unique_ptr<tf2_ros::TransformListener> listener;
   bool tf_failing = false;
   std::chrono::steady_clock::time_point last_warning;
+  // a TrajectoryGoal: the action server and its goals by the id the core knows them by
+  std::unique_ptr<FjtServer> action;
+  std::map<uint64_t, FjtServer::GoalHandle> goals;
+  uint64_t next_goal = 1;
 
   // Hands one value to the world and logs what came of it.
-  void command(car_sim::Command value) {
+  car_sim::CommandResult command(car_sim::Command value) {
     const car_sim::CommandResult r = node->world().command(robot, plugin, port.name, std::move(value));
     if (!r.accepted) {
       // throttled in wall time: sim time stands still while paused and restarts at 0 after a reset
@@ -40,7 +56,12 @@ struct InputPorts::Port {
       else
         ROS_WARN("car: %s: %s", plugin.c_str(), n.text.c_str());
     }
+    return r;
   }
+
+  void on_goal(FjtServer::GoalHandle gh);
+  void on_cancel(FjtServer::GoalHandle gh);
+  void on_result(const car_sim::GoalResultSample& s);
 };
 
 namespace {
@@ -59,7 +80,7 @@ car_sim::Command from_msg(const geometry_msgs::Wrench& m) {
   return w;
 }
 
-car_sim::Command from_msg(const trajectory_msgs::JointTrajectory& m) {
+car_sim::JointTrajectory to_trajectory(const trajectory_msgs::JointTrajectory& m) {
   car_sim::JointTrajectory t;
   t.joint_names = m.joint_names;
   t.start = m.header.stamp.toSec();
@@ -67,13 +88,18 @@ car_sim::Command from_msg(const trajectory_msgs::JointTrajectory& m) {
   for (const auto& p : m.points) {
     car_sim::TrajectoryPoint q;
     q.positions = p.positions;
+    q.velocities = p.velocities;
+    q.accelerations = p.accelerations;
     q.time_from_start = p.time_from_start.toSec();
     t.points.push_back(std::move(q));
   }
   return t;
 }
 
+car_sim::Command from_msg(const trajectory_msgs::JointTrajectory& m) { return to_trajectory(m); }
 car_sim::Command from_msg(const std_msgs::Empty&) { return car_sim::Trigger{}; }
+car_sim::Command from_msg(const std_msgs::Float64& m) { return car_sim::Float64{m.data}; }
+car_sim::Command from_msg(const std_msgs::Float64MultiArray& m) { return car_sim::Float64Array{m.data}; }
 
 // A subscriber that hands each message, converted, to the port (the callback runs on the node's thread between
 // steps).
@@ -86,9 +112,77 @@ ros::Subscriber subscribe(NodeContext& node, const std::shared_ptr<InputPorts::P
 
 }  // namespace
 
+// A goal: numbered, handed to the core; accepted, or rejected with the core's code and reason.
+void InputPorts::Port::on_goal(FjtServer::GoalHandle gh) {
+  const auto& goal = *gh.getGoal();
+  car_sim::TrajectoryGoal g;
+  g.id = next_goal++;
+  g.trajectory = to_trajectory(goal.trajectory);
+  for (const auto& t : goal.path_tolerance) g.path_position[t.name] = t.position;
+  for (const auto& t : goal.goal_tolerance) g.goal_position[t.name] = t.position;
+  if (!goal.goal_time_tolerance.isZero()) g.goal_time_tolerance = goal.goal_time_tolerance.toSec();
+  const car_sim::CommandResult r = command(std::move(g));
+  if (!r.accepted || r.refused) {
+    control_msgs::FollowJointTrajectoryResult res;
+    res.error_code = r.refused ? r.code : control_msgs::FollowJointTrajectoryResult::INVALID_GOAL;
+    res.error_string = r.reason;
+    gh.setRejected(res, r.reason);
+    return;
+  }
+  gh.setAccepted();
+  goals[g.id] = gh;
+}
+
+// A cancel: the core stops the goal; the action answers at once.
+void InputPorts::Port::on_cancel(FjtServer::GoalHandle gh) {
+  for (auto it = goals.begin(); it != goals.end(); ++it)
+    if (it->second == gh) {
+      car_sim::TrajectoryGoal c;
+      c.id = it->first;
+      c.cancel = true;
+      command(std::move(c));
+      control_msgs::FollowJointTrajectoryResult r;
+      gh.setCanceled(r);
+      goals.erase(it);
+      return;
+    }
+}
+
+// A goal's end, from the port's GoalResult output.
+void InputPorts::Port::on_result(const car_sim::GoalResultSample& s) {
+  const auto g = goals.find(s.goal);
+  if (g == goals.end()) return;
+  control_msgs::FollowJointTrajectoryResult res;
+  res.error_code = s.error_code;
+  res.error_string = s.error_string;
+  // the controller's states up to the goal's end go out before its result
+  node->flush_published();
+  using S = car_sim::GoalResultSample::Status;
+  if (s.status == S::Succeeded)
+    g->second.setSucceeded(res);
+  else if (s.status == S::Canceled)
+    g->second.setCanceled(res, s.error_string);
+  else
+    g->second.setAborted(res, s.error_string);
+  goals.erase(g);
+}
+
 std::string InputPorts::setup(const car_sim::PluginInfo& plugin, NodeContext& node) {
   std::string topics;
+  std::vector<std::shared_ptr<Port>> old = std::move(ports_);
+  ports_.clear();
+  polled_ = false;
   for (const car_sim::InputPort& ip : plugin.inputs) {
+    // a port that stays keeps its subscriber (and its action's goals)
+    auto same = std::find_if(old.begin(), old.end(), [&ip](const std::shared_ptr<Port>& o) {
+      return o && o->port.name == ip.name && o->port.type == ip.type && o->port.topic == ip.topic;
+    });
+    if (same != old.end()) {
+      polled_ = polled_ || (*same)->buffer != nullptr;
+      if ((*same)->sub) topics += (topics.empty() ? "" : ", ") + (*same)->sub.getTopic();
+      ports_.push_back(std::move(*same));
+      continue;
+    }
     auto p = std::make_shared<Port>();
     p->robot = plugin.robot;
     p->plugin = plugin.config.name;
@@ -105,7 +199,19 @@ std::string InputPorts::setup(const car_sim::PluginInfo& plugin, NodeContext& no
         case T::Wrench: p->sub = subscribe<geometry_msgs::Wrench>(node, p); break;
         case T::JointTrajectory: p->sub = subscribe<trajectory_msgs::JointTrajectory>(node, p); break;
         case T::Trigger: p->sub = subscribe<std_msgs::Empty>(node, p); break;
+        case T::Float64: p->sub = subscribe<std_msgs::Float64>(node, p); break;
+        case T::Float64Array: p->sub = subscribe<std_msgs::Float64MultiArray>(node, p); break;
         case T::Pose: break;
+        case T::TrajectoryGoal: {
+          Port* raw = p.get();
+          p->action = std::make_unique<FjtServer>(
+              node.nh(), ip.topic, [raw](FjtServer::GoalHandle gh) { raw->on_goal(gh); },
+              [raw](FjtServer::GoalHandle gh) { raw->on_cancel(gh); }, false);
+          p->action->start();
+          node.set_goal_sink(ip.topic, raw, [raw](const car_sim::GoalResultSample& s) { raw->on_result(s); });
+          topics += (topics.empty() ? "" : ", ") + ip.topic + " (action)";
+          break;
+        }
       }
       if (p->sub) topics += (topics.empty() ? "" : ", ") + p->sub.getTopic();
     }

@@ -1,6 +1,7 @@
 // The input half of the ROS bridge: one subscriber factory per input sample type (Twist, Wrench, JointTrajectory,
-// Trigger; a Pose read from TF). Every message becomes a car_sim::Command and enters the core through
-// World::command, which checks it; a rejected value gets one warning per port, throttled. Names no plug-in kind.
+// Trigger, Float64, Float64Array; a Pose read from TF; a TrajectoryGoal through a FollowJointTrajectory action
+// server). Every message becomes a car_sim::Command and enters the core through World::command, which checks it; a
+// rejected value gets one warning per port, throttled. Names no plug-in kind.
 #pragma once
 
 #include <ros/ros.h>
@@ -12,13 +13,15 @@
 #include <string>
 #include <vector>
 
-#include "adapter.hpp"
+#include "context.hpp"
 
 namespace car_ros {
 
 class InputPorts {
  public:
-  // Subscribers (or a TF reader) for every input port of one plug-in instance; returns the topics for the log.
+  // Subscribers (or a TF reader, an action server) for every input port of one plug-in instance; returns the
+  // topics for the log. Called again when the instance's ports change: a port of the same name, type and topic
+  // keeps its subscriber, the others go.
   std::string setup(const car_sim::PluginInfo& plugin, NodeContext& node);
   // Reads the TF-fed ports and hands their values to the world (after each output of the plug-in is published,
   // as gazebo_ros's hand of god looks its target up on each update).

@@ -1,4 +1,4 @@
-// The node's loop: pacing against the wall clock (rtf), /clock, the plug-ins' outputs (ports or adapters), joint
+// The node's loop: pacing against the wall clock (rtf), /clock, the plug-ins' outputs (their ports), joint
 // states and model states, and which lazy plug-ins someone listens to.
 #include "node.hpp"
 
@@ -221,10 +221,7 @@ void SimNode::publish_outputs() {
     if (robot == route_.end()) continue;
     const auto it = robot->second.find(o->plugin);
     if (it == robot->second.end()) continue;
-    if (it->second.adapter)
-      it->second.adapter->publish_owned(std::move(o), *this);
-    else
-      it->second.outputs->publish(std::move(o), *this);
+    it->second.outputs->publish(std::move(o), *this);
     if (it->second.polled) it->second.polled->poll();
   }
   // lazy plug-ins compute only while someone listens; look every 50 steps
@@ -266,14 +263,14 @@ void SimNode::publish_outputs() {
 void SimNode::update_activity() {
   for (auto& [name, io] : io_)
     for (auto& p : io.plugins) {
-      if (!p.info.lazy || (!p.adapter && !p.outputs)) continue;
-      const bool want = p.adapter ? p.adapter->listened() : p.outputs->listened();
+      if (!p.info.lazy || !p.outputs) continue;
+      const bool want = p.outputs->listened();
       if (want != p.active) {
         world_->set_plugin_active(name, p.info.config.name, want);
         p.active = want;
       }
       // only the parts someone takes are made (a depth camera's depth image without its colour and cloud)
-      const uint32_t parts = p.adapter ? p.adapter->parts() : p.outputs->parts();
+      const uint32_t parts = p.outputs->parts();
       if (parts != p.parts) {
         world_->plugin(name, p.info.config.name)->set_parts(parts);
         p.parts = parts;
@@ -301,28 +298,26 @@ void SimNode::make_io(const std::string& name) {
     if (p.robot != name) continue;
     PluginIO pio;
     pio.info = p;
-    const AdapterKind* a = find_adapter(p.config.kind);
-    if (!a && p.inputs.empty() && p.outputs.empty()) {
-      ROS_WARN("car: %s: plug-in '%s' (%s) is simulated but has no ROS adapter; nothing is published for it",
+    if (p.inputs.empty() && p.outputs.empty() && p.services.empty()) {
+      ROS_WARN("car: %s: plug-in '%s' (%s) is simulated but has no ports; nothing is published for it",
                name.c_str(), p.config.name.c_str(), p.config.filename.c_str());
       io.plugins.push_back(std::move(pio));
       continue;
     }
-    std::string offers;
-    if (!p.outputs.empty()) {
-      // the output ports: one converter per sample type (outputs.cpp)
-      pio.outputs = std::make_unique<OutputPorts>();
-      offers = pio.outputs->setup(p, info, *this);
-    } else if (a) {
-      pio.adapter = a->make();
-      offers = pio.adapter->setup(p, info, *this);
-    }
+    // the output ports: one converter per sample type (outputs.cpp)
+    pio.outputs = std::make_unique<OutputPorts>();
+    std::string offers = pio.outputs->setup(p, info, *this);
     // the input ports: one subscriber factory per sample type (inputs.cpp)
     pio.inputs = std::make_unique<InputPorts>();
     const std::string inputs = pio.inputs->setup(p, *this);
-    if (!inputs.empty() && !pio.adapter) offers += (offers.empty() ? "input " : ", input ") + inputs;
-    if (pio.adapter || pio.outputs)
-      route_[name][p.config.name] = {pio.adapter.get(), pio.outputs.get(), pio.inputs->polled() ? pio.inputs.get() : nullptr};
+    if (!inputs.empty()) offers += (offers.empty() ? "input " : ", input ") + inputs;
+    // the calls: one service factory per call type (calls.cpp)
+    pio.services = std::make_unique<ServicePorts>();
+    const std::string plugin = p.config.name;
+    const std::string services =
+        pio.services->setup(p, *this, [this, name, plugin] { ports_changed(name, plugin); });
+    if (!services.empty()) offers += (offers.empty() ? "" : ", ") + services;
+    route_[name][p.config.name] = {pio.outputs.get(), pio.inputs->polled() ? pio.inputs.get() : nullptr};
     if (!p.config.sensor.empty())
       ROS_INFO("car: %s: sensor '%s' (%s, %s) on %s at %g Hz: %s", name.c_str(), p.config.sensor.c_str(),
                p.config.sensor_type.c_str(), p.config.filename.c_str(), p.link.c_str(), p.rate, offers.c_str());
@@ -333,6 +328,19 @@ void SimNode::make_io(const std::string& name) {
   }
   io_[name] = std::move(io);
   // the new plug-ins subscribed after lockstep's answers: subscribe those again, to come last
+  lockstep_.resubscribe();
+}
+
+void SimNode::ports_changed(const std::string& robot, const std::string& plugin) {
+  for (auto& pio : io_[robot].plugins) {
+    if (pio.info.config.name != plugin) continue;
+    pio.info = world_->plugin_info(robot, plugin);
+    const std::string offers = pio.outputs->setup(pio.info, world_->robot(robot), *this);
+    const std::string inputs = pio.inputs->setup(pio.info, *this);
+    route_[robot][plugin].polled = pio.inputs->polled() ? pio.inputs.get() : nullptr;
+    ROS_DEBUG("car: %s: %s '%s' now offers %s; input %s", robot.c_str(), pio.info.config.kind.c_str(), plugin.c_str(),
+              offers.c_str(), inputs.c_str());
+  }
   lockstep_.resubscribe();
 }
 

@@ -1,7 +1,7 @@
 // car's simulator node: the ROS skin over car_sim::World. It paces the world against the wall clock (rtf),
 // publishes /clock, runs Gazebo-style services under /gazebo (services.cpp), subscribes every input port
-// (inputs.cpp), and feeds every plug-in instance's outputs to its output ports (outputs.cpp) or, for a kind not yet
-// on ports, to its kind's adapter (adapters/). All maths lives in the core.
+// (inputs.cpp), feeds every plug-in instance's outputs to its output ports (outputs.cpp) and serves its calls
+// (calls.cpp). All maths lives in the core.
 #pragma once
 
 #include <gazebo_msgs/DeleteModel.h>
@@ -35,7 +35,8 @@
 #include <string>
 #include <vector>
 
-#include "adapter.hpp"
+#include "calls.hpp"
+#include "context.hpp"
 #include "inputs.hpp"
 #include "outputs.hpp"
 #include "lockstep.hpp"
@@ -75,12 +76,12 @@ class SimNode : public NodeContext {
   void published(const std::string& topic, uint32_t subscribers) override { lockstep_.published(topic, subscribers); }
 
  private:
-  // One adapter per plug-in instance of a robot.
+  // The bridge of one plug-in instance of a robot: its input, output and service ports.
   struct PluginIO {
     car_sim::PluginInfo info;
-    std::unique_ptr<Adapter> adapter;
     std::unique_ptr<InputPorts> inputs;
-    std::unique_ptr<OutputPorts> outputs;  // a kind whose outputs have ports (it has no adapter)
+    std::unique_ptr<OutputPorts> outputs;
+    std::unique_ptr<ServicePorts> services;
     bool active = false;
     uint32_t parts = ~0u;  // the output parts last handed to the plug-in (Plugin::set_parts)
   };
@@ -93,8 +94,10 @@ class SimNode : public NodeContext {
   void publish_clock();
   void publish_outputs();
   void update_activity();
-  // Adapters for a spawned robot's plug-ins, plus the ground-truth publisher the node attaches.
+  // The bridge for a spawned robot's plug-ins, plus the ground-truth publisher the node attaches.
   void make_io(const std::string& robot);
+  // A plug-in instance's ports changed (a controller loaded or unloaded): its bridge reads them again.
+  void ports_changed(const std::string& robot, const std::string& plugin);
   uint64_t period_of(double rate) const;
   // The steps between two /clock, joint_states and model_states messages (from the rates, once the world's step
   // is known: init()), so a step only compares its tick with them.
@@ -147,10 +150,9 @@ class SimNode : public NodeContext {
   Pacer pacer_{std::chrono::milliseconds(10)};
   std::vector<ros::ServiceServer> services_;
   std::map<std::string, RobotIO> io_;
-  // robot -> plug-in -> its adapter and its inputs read from TF (nullptr: none), for routing outputs (looked up by
-  // the output's own strings: no copy per output)
+  // robot -> plug-in -> its output ports and its inputs read from TF (nullptr: none), for routing outputs (looked
+  // up by the output's own strings: no copy per output)
   struct Route {
-    Adapter* adapter = nullptr;
     OutputPorts* outputs = nullptr;
     InputPorts* polled = nullptr;
   };

@@ -1,6 +1,8 @@
 // The output half of the ROS bridge: samples -> messages, by sample type (the camera types: outputs_image.cpp).
 #include "outputs.hpp"
 
+#include <control_msgs/JointControllerState.h>
+#include <control_msgs/JointTrajectoryControllerState.h>
 #include <nav_msgs/Odometry.h>
 #include <sensor_msgs/JointState.h>
 // ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
@@ -15,6 +17,7 @@
 #include <sensor_msgs/PointCloud2.h>
 #include <sensor_msgs/Range.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cstring>
 #include <map>
@@ -190,11 +193,25 @@ std::string OutputPorts::setup(const car_sim::PluginInfo& plugin, const car_sim:
   std::string offers;
   auto add = [&offers](const std::string& s) { offers += (offers.empty() ? "" : ", ") + s; };
   using T = car_sim::SampleType;
+  std::vector<Port> old = std::move(ports_);
+  ports_.clear();
   for (const car_sim::OutputPort& op : plugin.outputs) {
+    // called again when the instance's ports change: a port of the same name, type and topic keeps its publisher
+    auto same = std::find_if(old.begin(), old.end(), [&op](const Port& o) {
+      return o.port.name == op.name && o.port.type == op.type && o.port.topic == op.topic;
+    });
+    if (same != old.end()) {
+      ports_.push_back(std::move(*same));
+      old.erase(same);
+      continue;
+    }
     Port p;
     p.port = op;
     // GazeboRos::resolveTF: tf_prefix from the plug-in's namespace (docs/COMPAT-spawn.md rule 4)
-    if (op.tf_prefix) {
+    if (op.frames_as_written) {
+      p.frame = op.frame;
+      p.child_frame = op.child_frame;
+    } else if (op.tf_prefix) {
       p.prefix = tf_prefix_param(op.ns);
       p.frame = resolve_tf(p.prefix, op.frame);
       p.child_frame = resolve_tf(p.prefix, op.child_frame);
@@ -232,6 +249,14 @@ std::string OutputPorts::setup(const car_sim::PluginInfo& plugin, const car_sim:
       case T::Wrench: p.pub = node.nh().advertise<geometry_msgs::WrenchStamped>(op.topic, op.queue); break;
       case T::Contacts: p.pub = node.nh().advertise<gazebo_msgs::ContactsState>(op.topic, op.queue); break;
       case T::Transform: add("TF " + p.frame + " -> " + p.child_frame); break;
+      // ---- ros_control's controllers ----
+      case T::ControllerState:
+        p.pub = node.nh().advertise<control_msgs::JointControllerState>(op.topic, op.queue);
+        break;
+      case T::TrajectoryState:
+        p.pub = node.nh().advertise<control_msgs::JointTrajectoryControllerState>(op.topic, op.queue);
+        break;
+      case T::GoalResult: break;  // the action server of the input port on the same namespace answers
     }
     // the sensors' ports: the topic and frame for the log line (the cameras' setup_image says its own words)
     const bool image = op.type == T::Image || op.type == T::CameraInfo || op.type == T::DepthImage ||
@@ -283,6 +308,8 @@ void OutputPorts::publish(std::shared_ptr<const car_sim::Output> owned, NodeCont
   const std::vector<car_sim::JointState>& joints = sample ? *sample : kNone;
   using T = car_sim::SampleType;
   for (Port& p : ports_) {
+    // an output for one port (a controller's) goes out on that port only
+    if (!out.port.empty() && out.port != p.port.name) continue;
     header.frame_id = p.frame;
     switch (p.port.type) {
       case T::Odometry: {
@@ -321,6 +348,8 @@ void OutputPorts::publish(std::shared_ptr<const car_sim::Output> owned, NodeCont
           js.position.push_back(j.position);
           js.velocity.push_back(j.velocity);
         }
+        if (p.port.with_effort)
+          if (const std::vector<double>* e = out.joint_efforts_sample()) js.effort = *e;
         node.publish(p.pub, std::move(js));
         break;
       }
@@ -410,6 +439,44 @@ void OutputPorts::publish(std::shared_ptr<const car_sim::Output> owned, NodeCont
         node.send_tf(std::move(t));
         break;
       }
+      // ---- ros_control's controllers ----
+      case T::ControllerState: {
+        const car_sim::ControllerStateSample* s = out.controller_state_sample();
+        if (!s) break;
+        control_msgs::JointControllerState m;
+        m.set_point = s->set_point;
+        m.process_value = s->process_value;
+        m.process_value_dot = s->process_value_dot;
+        m.error = s->error;
+        m.time_step = s->time_step;
+        m.command = s->command;
+        m.p = s->p;
+        m.i = s->i;
+        m.d = s->d;
+        m.i_clamp = s->i_clamp;
+        m.antiwindup = s->antiwindup;
+        publish(p, std::move(m), header, node);
+        break;
+      }
+      case T::TrajectoryState: {
+        const car_sim::TrajectoryStateSample* s = out.trajectory_state_sample();
+        if (!s) break;
+        control_msgs::JointTrajectoryControllerState m;
+        m.joint_names = s->joints;
+        m.desired.positions = s->desired_position;
+        m.desired.velocities = s->desired_velocity;
+        m.actual.positions = s->actual_position;
+        m.actual.velocities = s->actual_velocity;
+        for (size_t k = 0; k < s->joints.size(); ++k) {
+          m.error.positions.push_back(s->desired_position[k] - s->actual_position[k]);
+          m.error.velocities.push_back(s->desired_velocity[k] - s->actual_velocity[k]);
+        }
+        publish(p, std::move(m), header, node);
+        break;
+      }
+      case T::GoalResult:
+        if (const car_sim::GoalResultSample* s = out.goal_result_sample()) node.finish_goal(p.port.topic, *s);
+        break;
     }
   }
 }

@@ -34,6 +34,7 @@ struct Instance {
   Schedule schedule;
   bool active = false;  // someone listens (lazy kinds compute only then)
   OutputQueue queue;
+  size_t static_inputs = 0, static_outputs = 0;  // the kind's own ports, before the instance's dynamic ones
 };
 
 }  // namespace
@@ -151,6 +152,9 @@ struct World::Impl : WorldAccess {
     i.info.lazy = kind->lazy;
     if (kind->inputs) i.info.inputs = kind->inputs(c, r.info.name);
     if (kind->outputs) i.info.outputs = kind->outputs(c, r.info.name, env);
+    if (kind->services) i.info.services = kind->services(c, r.info.name);
+    i.static_inputs = i.info.inputs.size();
+    i.static_outputs = i.info.outputs.size();
     return i;
   }
 
@@ -477,6 +481,19 @@ std::string non_finite(const Command& value) {
   if (const auto* p = std::get_if<PoseCommand>(&value))
     return p->pose.matrix().allFinite() ? "" : listed({{"x", p->pose.translation().x()}, {"y", p->pose.translation().y()},
                                                        {"z", p->pose.translation().z()}});
+  if (const auto* f = std::get_if<Float64>(&value)) return std::isfinite(f->data) ? "" : listed({{"data", f->data}});
+  if (const auto* a = std::get_if<Float64Array>(&value)) {
+    for (double x : a->data)
+      if (!std::isfinite(x)) {
+        std::string s = "data [";
+        for (size_t k = 0; k < a->data.size(); ++k) {
+          char buf[32];
+          std::snprintf(buf, sizeof buf, "%s%g", k ? " " : "", a->data[k]);
+          s += buf;
+        }
+        return s + "]";
+      }
+  }
   return "";
 }
 
@@ -507,6 +524,30 @@ CommandResult World::command(const std::string& robot, const std::string& plugin
   }
   i->plugin->command(port, value, &result);
   return result;
+}
+
+CallResponse World::call(const std::string& robot, const std::string& plugin, const std::string& service,
+                          const CallRequest& request) {
+  Instance* i = impl_->instance(robot, plugin);
+  if (!i) throw std::invalid_argument("robot '" + robot + "' has no plug-in '" + plugin + "'");
+  const ServicePort* s = nullptr;
+  for (const ServicePort& q : i->info.services)
+    if (q.name == service) s = &q;
+  if (!s) throw std::invalid_argument("plug-in '" + plugin + "' of robot '" + robot + "' has no service '" + service + "'");
+  CallResponse r = i->plugin->call(service, request);
+  if (r.ports_changed) {
+    // the kind's own ports, then the instance's current ones
+    i->info.inputs.resize(i->static_inputs);
+    i->info.outputs.resize(i->static_outputs);
+    i->plugin->dynamic_ports(&i->info.inputs, &i->info.outputs);
+  }
+  return r;
+}
+
+const PluginInfo& World::plugin_info(const std::string& robot, const std::string& plugin) const {
+  const Instance* i = impl_->instance(robot, plugin);
+  if (!i) throw std::invalid_argument("robot '" + robot + "' has no plug-in '" + plugin + "'");
+  return i->info;
 }
 
 std::vector<Contact> World::contacts() const { return impl_->contacts(); }

@@ -5,7 +5,7 @@
 
 namespace car_sim {
 
-// A plug-in that takes a wrench command (the ROS adapter feeds it).
+// A plug-in that takes a wrench command (through its input port).
 class WrenchCommand {
  public:
   virtual ~WrenchCommand() = default;

@@ -6,7 +6,7 @@
 
 namespace car_sim {
 
-// A plug-in that follows a pose target (the ROS adapter feeds it from TF).
+// A plug-in that follows a pose target (its input port, which a ROS skin reads from TF).
 class PoseTarget {
  public:
   virtual ~PoseTarget() = default;

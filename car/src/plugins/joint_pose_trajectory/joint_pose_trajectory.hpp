@@ -8,7 +8,7 @@
 
 namespace car_sim {
 
-// A plug-in that takes a trajectory command (the ROS adapter feeds it).
+// A plug-in that takes a trajectory command (through its input port).
 class TrajectoryCommand {
  public:
   virtual ~TrajectoryCommand() = default;

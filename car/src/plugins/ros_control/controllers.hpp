@@ -1,4 +1,4 @@
-// The controller types of car's ros_control layer (docs/COMPAT-control.md): what the ROS adapter may command and
+// The controller types of car's ros_control layer (docs/COMPAT-control.md): what their ports take and
 // the outputs each publishes. One file per type family: ctl_joint_state.cpp, ctl_joint.cpp (forward and PID
 // joint controllers, joint groups), ctl_diff_drive.cpp, ctl_trajectory.cpp; the type table in ctl_registry.cpp.
 #pragma once
@@ -23,57 +23,74 @@ struct Pid {
   void reset() { i_term = last_error = p_term = d_term = 0; }
 };
 
-// joint_states of joint_state_controller: every transmission joint (and extra_joints).
+// A port of controller `name`: named "<name>/<leaf>", on `topic` (absolute).
+InputPort controller_input(const std::string& name, const std::string& leaf, InputType type, const std::string& topic,
+                           uint32_t queue);
+OutputPort controller_output(const std::string& name, const std::string& leaf, SampleType type,
+                             const std::string& topic, uint32_t queue);
+
+// joint_states of joint_state_controller: every transmission joint (and extra_joints), with its effort.
 struct JointStatesOutput : ControllerOutput {
-  std::vector<std::string> names;
-  std::vector<double> position, velocity, effort;
+  std::vector<JointState> joints;
+  std::vector<double> effort;  // [N m] or [N], one per joint
+  const std::vector<JointState>* joint_states_sample() const override { return &joints; }
+  const std::vector<double>* joint_efforts_sample() const override { return &effort; }
   void visit(FieldVisitor& v) const override;
 };
 
 // control_msgs/JointControllerState of the PID joint controllers.
-struct JointControllerStateOutput : ControllerOutput {
-  double set_point = 0, process_value = 0, process_value_dot = 0, error = 0, time_step = 0, command = 0;
-  Pid pid;
+struct JointControllerStateOutput : ControllerOutput, ControllerStateSample {
+  const ControllerStateSample* controller_state_sample() const override { return this; }
   void visit(FieldVisitor& v) const override;
 };
 
-// diff_drive_controller's odometry: pose and twist of base_frame_id in odom_frame_id.
+// diff_drive_controller's odometry: pose and twist of base_frame_id in odom_frame_id (the port's frames).
 struct DiffDriveOdometryOutput : ControllerOutput {
-  std::string odom_frame, base_frame;
-  bool tf = true;
   double x = 0, y = 0, heading = 0;   // [m], [rad], odom frame
   double linear = 0, angular = 0;     // [m/s], [rad/s], base frame
-  double pose_cov[6] = {0}, twist_cov[6] = {0};
+  bool odometry_sample(OdometrySample* s) const override;
   void visit(FieldVisitor& v) const override;
 };
 
 // joint_trajectory_controller's state: desired, actual and error per joint.
-struct TrajectoryStateOutput : ControllerOutput {
-  std::vector<std::string> joints;
-  std::vector<double> desired_position, desired_velocity, actual_position, actual_velocity;
+struct TrajectoryStateOutput : ControllerOutput, TrajectoryStateSample {
+  const TrajectoryStateSample* trajectory_state_sample() const override { return this; }
   void visit(FieldVisitor& v) const override;
 };
 
-// A FollowJointTrajectory goal's end, for the action server.
+// A FollowJointTrajectory goal's end, for the action server. error_code -6 (car's own: canceled) ends it as
+// canceled with code 0, 0 as succeeded, any other as aborted (the sample says which).
 struct TrajectoryResultOutput : ControllerOutput {
   uint64_t goal = 0;
   int error_code = 0;  // control_msgs/FollowJointTrajectoryResult codes
   std::string error_string;
+  GoalResultSample sample;  // filled by finish()
+  const GoalResultSample* goal_result_sample() const override { return &sample; }
+  void finish();
   void visit(FieldVisitor& v) const override;
 };
 
-// Controllers that take a command (the adapter's subscribers call these between steps).
+// Controllers that take a command: std_msgs/Float64 on <ns>/command (one joint), or Float64MultiArray (a group).
 class CommandController : public Controller {
  public:
-  // std_msgs/Float64 (one joint) or Float64MultiArray (a group): one value per joint, in `joints()` order.
+  // One value per joint, in `joints()` order.
   virtual bool set_command(const std::vector<double>& values, std::string* why) = 0;
   virtual std::vector<std::string> joints() const = 0;
+  // The command port, Float64 or Float64Array as the type is a group or not.
+  virtual bool group() const { return false; }
+  void ports(const std::string& name, const std::string& robot_ns, const std::string& ns, std::vector<InputPort>* in,
+             std::vector<OutputPort>* out) const override;
+  void command(const std::string& leaf, const Command& value, double now, CommandResult* r) override;
 };
 
 class DiffDriveController : public Controller {
  public:
   // geometry_msgs/Twist: linear.x [m/s], angular.z [rad/s], received at sim time `time` [s].
   virtual void set_twist(double linear, double angular, double time) = 0;
+  void command(const std::string& leaf, const Command& value, double now, CommandResult* r) override {
+    const Twist& t = std::get<Twist>(value);
+    set_twist(t.linear.x(), t.angular.z(), now);
+  }
 };
 
 // One trajectory point as trajectory_msgs/JointTrajectoryPoint has it (empty vectors: not given).
@@ -99,6 +116,10 @@ class TrajectoryController : public Controller {
   // Cancel an action goal: stop (hold the current position, ramping over stop_trajectory_duration).
   virtual void cancel(uint64_t goal_id, double now) = 0;
   virtual std::vector<std::string> joints() const = 0;
+  // state, command (JointTrajectory) and follow_joint_trajectory (TrajectoryGoal in, GoalResult out)
+  void ports(const std::string& name, const std::string& robot_ns, const std::string& ns, std::vector<InputPort>* in,
+             std::vector<OutputPort>* out) const override;
+  void command(const std::string& leaf, const Command& value, double now, CommandResult* r) override;
 };
 
 }  // namespace control

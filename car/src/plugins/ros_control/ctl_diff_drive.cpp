@@ -9,6 +9,13 @@
 namespace car_sim {
 namespace control {
 
+bool DiffDriveOdometryOutput::odometry_sample(OdometrySample* s) const {
+  s->pose = Eigen::Translation3d(x, y, 0.0) * Eigen::Quaterniond(std::cos(heading / 2), 0, 0, std::sin(heading / 2));
+  s->linear = Eigen::Vector3d(linear, 0, 0);
+  s->angular = Eigen::Vector3d(0, 0, angular);
+  return true;
+}
+
 void DiffDriveOdometryOutput::visit(FieldVisitor& v) const {
   v.text("controller", controller);
   const double p[3] = {x, y, heading};
@@ -177,18 +184,29 @@ class DiffDriveCtl : public DiffDriveController {
     last_pub_ = t.time;
     auto o = std::make_unique<DiffDriveOdometryOutput>();
     o->controller = name_;
+    o->port = name_ + "/odom";
     o->type = "diff_drive_controller/DiffDriveController";
-    o->odom_frame = odom_frame_;
-    o->base_frame = base_frame_;
-    o->tf = enable_tf_;
     o->x = x_;
     o->y = y_;
     o->heading = heading_;
     o->linear = vel_lin_;
     o->angular = vel_ang_;
-    std::copy(pose_cov_, pose_cov_ + 6, o->pose_cov);
-    std::copy(twist_cov_, twist_cov_ + 6, o->twist_cov);
     out->push_back(std::move(o));
+  }
+
+  // cmd_vel (linear.x, angular.z), odom (queue 100) with the transform odom -> base after it (enable_odom_tf)
+  void ports(const std::string& name, const std::string&, const std::string& ns, std::vector<InputPort>* in,
+             std::vector<OutputPort>* out) const override {
+    InputPort c = controller_input(name, "cmd_vel", InputType::Twist, ns + "/cmd_vel", 1);
+    c.axes = kLinearX | kAngularZ;
+    in->push_back(c);
+    OutputPort o = controller_output(name, "odom", SampleType::Odometry, ns + "/odom", 100);
+    o.frame = odom_frame_;
+    o.child_frame = base_frame_;
+    o.tf = enable_tf_ ? TfOrder::After : TfOrder::None;
+    std::copy(pose_cov_, pose_cov_ + 6, o.pose_covariance.begin());
+    std::copy(twist_cov_, twist_cov_ + 6, o.twist_covariance.begin());
+    out->push_back(o);
   }
 
   std::vector<std::pair<std::string, std::vector<std::string>>> claimed() const override {

@@ -31,14 +31,55 @@ double Pid::compute(double error, double error_dot, double dt) {
   return p_term + i_term + d_term;
 }
 
+InputPort controller_input(const std::string& name, const std::string& leaf, InputType type, const std::string& topic,
+                           uint32_t queue) {
+  InputPort p;
+  p.name = name + "/" + leaf;
+  p.type = type;
+  p.topic = topic;
+  p.queue = queue;
+  return p;
+}
+
+OutputPort controller_output(const std::string& name, const std::string& leaf, SampleType type,
+                             const std::string& topic, uint32_t queue) {
+  OutputPort p;
+  p.name = name + "/" + leaf;
+  p.type = type;
+  p.topic = topic;
+  p.queue = queue;
+  p.tf_prefix = false;
+  p.frames_as_written = true;
+  return p;
+}
+
 void JointStatesOutput::visit(FieldVisitor& v) const {
   std::string n;
-  for (const auto& s : names) n += (n.empty() ? "" : ",") + s;
+  std::vector<double> position, velocity;
+  for (const auto& j : joints) {
+    n += (n.empty() ? "" : ",") + j.name;
+    position.push_back(j.position);
+    velocity.push_back(j.velocity);
+  }
   v.text("controller", controller);
   v.text("names", n);
   v.vector("position", position.data(), position.size());
   v.vector("velocity", velocity.data(), velocity.size());
   v.vector("effort", effort.data(), effort.size());
+}
+
+void CommandController::ports(const std::string& name, const std::string&, const std::string& ns,
+                              std::vector<InputPort>* in, std::vector<OutputPort>*) const {
+  in->push_back(controller_input(name, "command", group() ? InputType::Float64Array : InputType::Float64,
+                                 ns + "/command", 1));
+}
+
+void CommandController::command(const std::string&, const Command& value, double, CommandResult* r) {
+  const std::vector<double> v =
+      std::holds_alternative<Float64>(value) ? std::vector<double>{std::get<Float64>(value).data}
+                                             : std::get<Float64Array>(value).data;
+  std::string why;
+  if (!set_command(v, &why)) r->notes.push_back({true, why});
 }
 
 void JointControllerStateOutput::visit(FieldVisitor& v) const {
@@ -97,16 +138,23 @@ class JointStateCtl : public Controller {
     if (!gate_.due(t.time)) return;
     auto o = std::make_unique<JointStatesOutput>();
     o->controller = name_;
+    o->port = name_ + "/joint_states";
     o->type = "joint_state_controller/JointStateController";
     for (const JointIo* j : joints_) {
-      o->names.push_back(j->name);
-      o->position.push_back(j->position);
-      o->velocity.push_back(j->velocity);
+      o->joints.push_back({j->name, j->position, j->velocity});
       o->effort.push_back(j->effort);
     }
     out->push_back(std::move(o));
   }
   std::vector<std::pair<std::string, std::vector<std::string>>> claimed() const override { return {}; }
+  // joint_states in the robot's namespace, queue 10 (as joint_state_controller)
+  void ports(const std::string& name, const std::string& robot_ns, const std::string&, std::vector<InputPort>*,
+             std::vector<OutputPort>* out) const override {
+    OutputPort p = controller_output(name, "joint_states", SampleType::JointStates,
+                                     robot_ns.empty() ? "/joint_states" : "/" + robot_ns + "/joint_states", 10);
+    p.with_effort = true;
+    out->push_back(p);
+  }
 
  private:
   std::string name_;
@@ -152,6 +200,7 @@ class ForwardCtl : public CommandController {
     return true;
   }
   std::vector<std::string> joints() const override { return names_; }
+  bool group() const override { return group_; }
   std::vector<std::pair<std::string, std::vector<std::string>>> claimed() const override {
     return {{to_string(iface_), names_}};
   }
@@ -202,6 +251,7 @@ class PidCtl : public CommandController {
     last_published_ = loops_;
     auto o = std::make_unique<JointControllerStateOutput>();
     o->controller = name_;
+    o->port = name_ + "/state";
     o->type = velocity_ ? "effort_controllers/JointVelocityController" : "effort_controllers/JointPositionController";
     o->set_point = set_point_;
     o->process_value = velocity_ ? joint_->velocity : joint_->position;
@@ -209,7 +259,11 @@ class PidCtl : public CommandController {
     o->error = error_;
     o->time_step = dt_;
     o->command = command_;
-    o->pid = pid_;
+    o->p = pid_.p;
+    o->i = pid_.i;
+    o->d = pid_.d;
+    o->i_clamp = pid_.i_max;
+    o->antiwindup = pid_.antiwindup;
     out->push_back(std::move(o));
   }
   bool set_command(const std::vector<double>& v, std::string* why) override {
@@ -226,6 +280,12 @@ class PidCtl : public CommandController {
   std::vector<std::string> joints() const override { return {joint_name_}; }
   std::vector<std::pair<std::string, std::vector<std::string>>> claimed() const override {
     return {{to_string(Interface::Effort), {joint_name_}}};
+  }
+  // command, and its state (control_msgs/JointControllerState, queue 1)
+  void ports(const std::string& name, const std::string& robot_ns, const std::string& ns, std::vector<InputPort>* in,
+             std::vector<OutputPort>* out) const override {
+    CommandController::ports(name, robot_ns, ns, in, out);
+    out->push_back(controller_output(name, "state", SampleType::ControllerState, ns + "/state", 1));
   }
 
  private:

@@ -1,5 +1,5 @@
 // The controller types car's ros_control layer runs, one line each (docs/COMPAT-control.md). A new type adds its
-// ctl_*.cpp and one line here (and, for ROS, its topics in src/ros/adapters/ros_control.cpp).
+// ctl_*.cpp (with its ports: Controller::ports) and one line here.
 #include "controllers.hpp"
 
 namespace car_sim {

@@ -15,6 +15,59 @@ void TrajectoryStateOutput::visit(FieldVisitor& v) const {
   v.vector("actual_position", actual_position.data(), actual_position.size());
 }
 
+void TrajectoryResultOutput::finish() {
+  using S = GoalResultSample::Status;
+  sample.goal = goal;
+  sample.status = error_code == 0 ? S::Succeeded : error_code == -6 ? S::Canceled : S::Aborted;
+  sample.error_code = error_code == -6 ? 0 : error_code;
+  sample.error_string = error_string;
+}
+
+// trajectory_msgs/JointTrajectory (the command topic, an action goal's trajectory) -> a goal
+static TrajGoal to_goal(const JointTrajectory& m) {
+  TrajGoal g;
+  g.joint_names = m.joint_names;
+  g.start_time = m.start;
+  for (const auto& p : m.points) g.points.push_back({p.positions, p.velocities, p.accelerations, p.time_from_start});
+  return g;
+}
+
+void TrajectoryController::ports(const std::string& name, const std::string&, const std::string& ns,
+                                 std::vector<InputPort>* in, std::vector<OutputPort>* out) const {
+  out->push_back(controller_output(name, "state", SampleType::TrajectoryState, ns + "/state", 1));
+  in->push_back(controller_input(name, "command", InputType::JointTrajectory, ns + "/command", 1));
+  // the action under <ns>/follow_joint_trajectory: goals and cancels in, results out
+  in->push_back(controller_input(name, "follow_joint_trajectory", InputType::TrajectoryGoal,
+                                 ns + "/follow_joint_trajectory", 1));
+  out->push_back(controller_output(name, "follow_joint_trajectory", SampleType::GoalResult,
+                                   ns + "/follow_joint_trajectory", 1));
+}
+
+void TrajectoryController::command(const std::string& leaf, const Command& value, double now, CommandResult* r) {
+  std::string why;
+  int code = 0;
+  if (const auto* t = std::get_if<JointTrajectory>(&value)) {
+    // the command topic: a new trajectory with no goal to answer
+    if (!set_trajectory(to_goal(*t), 0, now, &why, &code)) r->notes.push_back({true, "trajectory refused: " + why});
+    return;
+  }
+  const TrajectoryGoal& goal = std::get<TrajectoryGoal>(value);
+  if (goal.cancel) {
+    cancel(goal.id, now);
+    return;
+  }
+  TrajGoal g = to_goal(goal.trajectory);
+  g.path_position = goal.path_position;
+  g.goal_position = goal.goal_position;
+  g.goal_time_tolerance = goal.goal_time_tolerance;
+  // an active goal is replaced: it ends as canceled (upstream: preempted)
+  if (!set_trajectory(g, goal.id, now, &why, &code)) {
+    r->refused = true;
+    r->code = code;
+    r->reason = why;
+  }
+}
+
 void TrajectoryResultOutput::visit(FieldVisitor& v) const {
   v.text("controller", controller);
   v.integer("goal", static_cast<int64_t>(goal));
@@ -97,7 +150,7 @@ class TrajectoryCtl : public TrajectoryController {
   }
 
   void stopping(const ControlTime& t) override {
-    if (goal_) finish(TrajectoryResultOutput{}, -6, "controller stopped");  // preempted: handled by the adapter
+    if (goal_) finish(TrajectoryResultOutput{}, -6, "controller stopped");  // preempted: the action answers it
   }
 
   void update(const ControlTime& t) override {
@@ -152,12 +205,16 @@ class TrajectoryCtl : public TrajectoryController {
   }
 
   void publish(const ControlTime& t, OutputQueue* out) override {
-    for (auto& r : results_) out->push_back(std::make_unique<TrajectoryResultOutput>(r));
+    for (auto& r : results_) {
+      r.finish();
+      out->push_back(std::make_unique<TrajectoryResultOutput>(r));
+    }
     results_.clear();
     if (state_rate_ <= 0 || t.time < last_state_ + 1.0 / state_rate_ - 1e-9 || desired_p_.empty()) return;
     last_state_ = t.time;
     auto o = std::make_unique<TrajectoryStateOutput>();
     o->controller = name_;
+    o->port = name_ + "/state";
     o->type = type_name();
     o->joints = names_;
     o->desired_position = desired_p_;
@@ -305,6 +362,7 @@ class TrajectoryCtl : public TrajectoryController {
   }
   void finish(TrajectoryResultOutput r, int code, const std::string& why) {
     r.controller = name_;
+    r.port = name_ + "/follow_joint_trajectory";
     r.type = type_name();
     r.goal = goal_;
     r.error_code = code;

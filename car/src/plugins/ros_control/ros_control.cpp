@@ -194,7 +194,18 @@ RosControlConfig RosControlConfig::from(const PluginConfig& c) {
   return r;
 }
 
-RosControl::RosControl(const PluginConfig& c) : cfg_(RosControlConfig::from(c)) {}
+// "/a/b": a and b joined under the root ("" parts left out).
+static std::string join_ns(const std::string& a, const std::string& b) { return a.empty() ? "/" + b : "/" + a + "/" + b; }
+
+// <robotNamespace> absent: the model's name, empty: global, as gazebo_ros_control (leading '/' dropped)
+static std::string control_ns(const PluginConfig& c, const std::string& robot) {
+  std::string ns = plugin_robot_namespace(c, robot);
+  while (!ns.empty() && ns.front() == '/') ns.erase(ns.begin());
+  return ns;
+}
+
+RosControl::RosControl(const PluginConfig& c, const std::string& robot)
+    : cfg_(RosControlConfig::from(c)), ns_(control_ns(c, robot)) {}
 
 void RosControl::configure(RobotHandle& robot) {
   model_ = &robot.model();
@@ -233,6 +244,7 @@ void RosControl::configure(RobotHandle& robot) {
 // spawn pose: position commands hold it, velocity and effort commands are 0.
 void RosControl::reset() {
   first_ = true;
+  now_ = 0.0;
   for (auto& j : joints_) j.cmd_velocity = j.cmd_effort = 0.0;
 }
 
@@ -320,6 +332,7 @@ void RosControl::pre_physics(const StepContext& ctx, RobotHandle& robot) {
 }
 
 void RosControl::post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) {
+  now_ = ctx.time();
   bool any = false;
   for (const auto& l : loaded_) any = any || l.running;
   if (!any) return;
@@ -442,6 +455,90 @@ bool RosControl::switch_controllers(const std::vector<std::string>& start, const
   return true;
 }
 
+void RosControl::dynamic_ports(std::vector<InputPort>* inputs, std::vector<OutputPort>* outputs) const {
+  for (const auto& l : loaded_) l.controller->ports(l.name, ns_, join_ns(ns_, l.name), inputs, outputs);
+}
+
+void RosControl::command(const std::string& port, const Command& value, CommandResult* result) {
+  // "<controller>/<leaf>"
+  const size_t slash = port.rfind('/');
+  const std::string name = port.substr(0, slash), leaf = port.substr(slash + 1);
+  for (auto& l : loaded_) {
+    if (l.name != name) continue;
+    // a stopped controller takes no command (its action rejects goals: upstream's isRunning checks)
+    if (!l.running) {
+      if (std::holds_alternative<TrajectoryGoal>(value) && !std::get<TrajectoryGoal>(value).cancel) {
+        result->refused = true;
+        result->code = -1;  // INVALID_GOAL
+        result->reason = "controller '" + name + "' is not running";
+      }
+      return;
+    }
+    const size_t first = result->notes.size();
+    l.controller->command(leaf, value, now_, result);
+    for (size_t k = first; k < result->notes.size(); ++k)
+      result->notes[k].text = "controller '" + name + "': " + result->notes[k].text;
+    return;
+  }
+}
+
+CallResponse RosControl::call(const std::string& service, const CallRequest& rq) {
+  CallResponse r;
+  auto fail = [&r](const std::string& why) {
+    r.ok = false;
+    r.errors.push_back("controller_manager: " + why);
+    return r;
+  };
+  if (service == "load_controller") {
+    const std::string pns = join_ns(ns_, rq.name);
+    const auto t = rq.params.find("type");
+    if (t == rq.params.end() || t->second.size() != 1)
+      return fail("could not load controller '" + rq.name + "': " + pns + "/type: missing (required key)");
+    try {
+      load(rq.name, t->second[0], rq.params);
+    } catch (const std::exception& e) {
+      return fail("could not load controller: " + std::string(e.what()) + " (parameters at " + pns + ")");
+    }
+    r.infos.push_back("controller_manager: loaded '" + rq.name + "' (" + t->second[0] + ")");
+    r.ports_changed = true;
+  } else if (service == "unload_controller") {
+    try {
+      unload(rq.name);
+    } catch (const std::exception& e) {
+      return fail("could not unload: " + std::string(e.what()));
+    }
+    r.infos.push_back("controller_manager: unloaded '" + rq.name + "'");
+    r.ports_changed = true;
+  } else if (service == "switch_controller") {
+    if (rq.strictness != 1 && rq.strictness != 2)
+      return fail("switch_controller: strictness " + std::to_string(rq.strictness) +
+                  " is neither BEST_EFFORT (1) nor STRICT (2)");
+    std::string why;
+    if (!switch_controllers(rq.start, rq.stop, rq.strictness == 2, &why)) return fail("switch_controller refused: " + why);
+  } else if (service == "list_controllers") {
+    for (const auto& l : loaded_)
+      r.controllers.push_back({l.name, l.type, l.running ? "running" : "stopped", l.controller->claimed()});
+  } else if (service == "list_controller_types") {
+    for (const auto& t : control::controller_types()) r.types.emplace_back(t.name, t.base_class);
+  } else if (service == "reload_controller_libraries") {
+    // car's controller types are built in: nothing to reload; upstream refuses while controllers are loaded
+    if (!loaded_.empty() && !rq.force_kill)
+      return fail("reload_controller_libraries: controllers are loaded (force_kill false)");
+    std::vector<std::string> names;
+    for (const auto& l : loaded_) names.push_back(l.name);
+    std::string why;
+    switch_controllers({}, names, false, &why);
+    for (const auto& n : names) {
+      unload(n);
+      r.infos.push_back("controller_manager: unloaded '" + n + "'");
+    }
+    r.ports_changed = !names.empty();
+  } else {
+    return fail("no service '" + service + "'");
+  }
+  return r;
+}
+
 const PluginKind& ros_control_kind() {
   static const PluginKind k = [] {
     PluginKind k;
@@ -457,8 +554,23 @@ const PluginKind& ros_control_kind() {
     k.ignored = {{"robotParam", "car reads the robot it spawned, not robot_description"},
                  {"eStopTopic", "not simulated"}};
     k.finish = finish;
-    k.make = [](const PluginConfig& c, const std::string&, uint64_t) -> std::unique_ptr<Plugin> {
-      return std::make_unique<RosControl>(c);
+    // controller_manager's services under <ns>/controller_manager/
+    k.services = [](const PluginConfig& c, const std::string& robot) {
+      const std::string ns = control_ns(c, robot), cm = join_ns(ns, "controller_manager");
+      std::vector<ServicePort> out;
+      using C = CallType;
+      for (const auto& [name, type] : std::vector<std::pair<std::string, C>>{
+               {"load_controller", C::LoadController},
+               {"unload_controller", C::UnloadController},
+               {"switch_controller", C::SwitchController},
+               {"list_controllers", C::ListControllers},
+               {"list_controller_types", C::ListControllerTypes},
+               {"reload_controller_libraries", C::ReloadControllerLibraries}})
+        out.push_back({name, type, cm + "/" + name, ns.empty() ? "" : "/" + ns});
+      return out;
+    };
+    k.make = [](const PluginConfig& c, const std::string& robot, uint64_t) -> std::unique_ptr<Plugin> {
+      return std::make_unique<RosControl>(c, robot);
     };
     return k;
   }();

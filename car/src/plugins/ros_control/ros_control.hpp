@@ -1,8 +1,9 @@
 // libgazebo_ros_control.so (gazebo_ros_control, Noetic) and the controllers it runs, per docs/COMPAT-control.md.
 // The kind reads the URDF <transmission>s, offers each joint's position / velocity / effort interface, and runs a
 // controller manager: controllers are loaded from a key/value configuration (the YAML keys of ros_controllers),
-// started and stopped, and updated every control period. No ROS here: the ROS adapter
-// (src/ros/adapters/ros_control.cpp) serves controller_manager's services and each controller's topics.
+// started and stopped, and updated every control period. No ROS here: controller_manager's services are the
+// instance's calls (CallType), each loaded controller's topics and action its dynamic ports; the ROS bridge serves
+// them by type like every other port.
 #pragma once
 
 #include <functional>
@@ -22,7 +23,7 @@ namespace control {
 
 // A controller's configuration: key path ("pid/p", "gains/joint1/p", "joints") -> its values (one for a scalar,
 // several for a list), as the parameter server holds them under <ns>/<controller name>/.
-using Params = std::map<std::string, std::vector<std::string>>;
+using Params = CallParams;
 
 // A configuration or load error a user can act on; what() reads "controller 'NAME': KEY: REASON".
 class ControllerError : public std::runtime_error {
@@ -83,7 +84,8 @@ struct ControlTime {
   double period = 0.0;  // [s] since the last update
 };
 
-// A controller's output at a tick (a joint state, an odometry, a controller state), tagged with its name.
+// A controller's output at a tick (a joint state, an odometry, a controller state), tagged with its name; its
+// `port` is the controller's output port it goes out on.
 struct ControllerOutput : Output {
   std::string controller;
   std::string type;  // e.g. "joint_state_controller/JointStateController"
@@ -102,6 +104,13 @@ class Controller {
   virtual void publish(const ControlTime& t, OutputQueue* out) {}
   // (hardware interface, joints) it claims, for list_controllers and the switch's conflict check.
   virtual std::vector<std::pair<std::string, std::vector<std::string>>> claimed() const = 0;
+  // Its ports, as ros_controllers names its topics: each port's name is "<its name>/<leaf>", its topic under
+  // `ns` (/<robot namespace>/<its name>), or `robot_ns` for joint_state_controller's joint_states.
+  virtual void ports(const std::string& name, const std::string& robot_ns, const std::string& ns,
+                     std::vector<InputPort>* in, std::vector<OutputPort>* out) const {}
+  // A value for its input port `leaf` (checked finite by the world), at sim time `now` [s]; refusals and log
+  // lines go to *r.
+  virtual void command(const std::string& leaf, const Command& value, double now, CommandResult* r) {}
 };
 
 struct ControllerType {
@@ -125,7 +134,7 @@ struct RosControlConfig {
   static RosControlConfig from(const PluginConfig& c);
 };
 
-// The controller manager of one robot. The ROS adapter drives it between steps (single-threaded).
+// The controller manager of one robot. Skins drive it between steps, through World::call and World::command.
 class RosControl : public Plugin, public control::Hardware {
  public:
   struct Loaded {
@@ -134,12 +143,18 @@ class RosControl : public Plugin, public control::Hardware {
     std::unique_ptr<control::Controller> controller;
   };
 
-  explicit RosControl(const PluginConfig& c);
+  RosControl(const PluginConfig& c, const std::string& robot);
   double update_rate() const override { return 0.0; }
   void configure(RobotHandle& robot) override;
   void pre_physics(const StepContext& ctx, RobotHandle& robot) override;
   void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) override;
   void reset() override;
+  // The commands of the loaded controllers' input ports ("<controller>/<leaf>").
+  void command(const std::string& port, const Command& value, CommandResult* result) override;
+  // controller_manager's services (ServicePort names as its kind lists them: load_controller, ...).
+  CallResponse call(const std::string& service, const CallRequest& request) override;
+  // Every loaded controller's ports, in load order.
+  void dynamic_ports(std::vector<InputPort>* inputs, std::vector<OutputPort>* outputs) const override;
 
   // controller_manager: throws control::ControllerError with the reason.
   void load(const std::string& name, const std::string& type, const control::Params& params);
@@ -170,6 +185,8 @@ class RosControl : public Plugin, public control::Hardware {
   std::vector<int> modes_;  // per joint: the Interface a running controller commands, -1: the first offered
   std::vector<Loaded> loaded_;
   ModelState root_;
+  std::string ns_;   // the robot namespace its topics go under ("" = global), leading '/' dropped
+  double now_ = 0;   // [s] sim time of the last step (for commands between steps)
   uint64_t period_ticks_ = 1, last_update_ = 0;
   double dt_ = 0.0;
   bool first_ = true;

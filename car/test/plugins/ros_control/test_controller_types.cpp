@@ -304,7 +304,9 @@ TEST(ControllerTypes, EffortTrajectoryHoldsTheArmAgainstGravityWithinItsConstrai
   auto states = w->take_outputs<control::JointStatesOutput>();
   ASSERT_FALSE(states.empty());
   const auto& s = states.back();
-  ASSERT_EQ(s.names, (std::vector<std::string>{"shoulder", "elbow"}));
+  ASSERT_EQ(s.joints.size(), 2u);
+  EXPECT_EQ(s.joints[0].name, "shoulder");
+  EXPECT_EQ(s.joints[1].name, "elbow");
   EXPECT_NEAR(s.effort[0], -tau_s, 1e-3);
   EXPECT_NEAR(s.effort[1], -tau_e * std::cos(tau_e / 500), 1e-3);
 }

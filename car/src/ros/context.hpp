@@ -1,13 +1,13 @@
-// ROS adapters, for the kinds whose outputs have no port type yet (src/ros/adapters/<kind>.cpp), registered in
-// src/ros/adapters/registry.cpp. An adapter turns one plug-in instance's configuration into publishers, and its
-// outputs into messages; inputs go through inputs.cpp, ported outputs through outputs.cpp. The node owns pacing,
-// /clock, the /gazebo services and the loop that feeds the adapters. NodeContext is what all of them may use.
+// What the bridge's parts (inputs.cpp, outputs.cpp, calls.cpp) may use of the node: its node handle, the world,
+// sim-time stamps, and the publishing thread. The node owns pacing, /clock, the /gazebo services and the loop that
+// hands each plug-in instance's outputs to its ports.
 #pragma once
 
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <utility>
@@ -17,7 +17,7 @@
 
 namespace car_ros {
 
-// What an adapter may use of the node.
+// What the bridge may use of the node.
 class NodeContext {
  public:
   virtual ~NodeContext() = default;
@@ -49,38 +49,29 @@ class NodeContext {
   // e.g. an action's result after the controller's last state).
   virtual void flush_published() = 0;
 
+  // The action server of the TrajectoryGoal input port on `ns` (inputs.cpp) ends its goals when a GoalResult
+  // sample comes for that port's namespace (outputs.cpp). `owner` tells whose sink a drop removes.
+  using GoalSink = std::function<void(const car_sim::GoalResultSample&)>;
+  void set_goal_sink(const std::string& ns, const void* owner, GoalSink sink) { goal_sinks_[ns] = {owner, std::move(sink)}; }
+  void drop_goal_sink(const std::string& ns, const void* owner) {
+    const auto it = goal_sinks_.find(ns);
+    if (it != goal_sinks_.end() && it->second.first == owner) goal_sinks_.erase(it);
+  }
+  void finish_goal(const std::string& ns, const car_sim::GoalResultSample& s) {
+    const auto it = goal_sinks_.find(ns);
+    if (it != goal_sinks_.end()) it->second.second(s);
+  }
+
  protected:
   // A job for the publishing thread, with its size [bytes] for the queue's bound.
   virtual void post(std::function<void()> job, size_t bytes) = 0;
   // A message was posted on topic while it had `subscribers` subscribers (only while watch_published_).
   virtual void published(const std::string& topic, uint32_t subscribers) {}
   bool watch_published_ = false;
-};
 
-class Adapter {
- public:
-  virtual ~Adapter() = default;
-  // Publishers and subscribers of one plug-in instance; returns what it offers, for the node's log line
-  // ("topics ..."), or "" to stay silent.
-  virtual std::string setup(const car_sim::PluginInfo& plugin, const car_sim::RobotInfo& robot, NodeContext& node) = 0;
-  // Someone listens to one of its topics: a lazy plug-in computes only then.
-  virtual bool listened() const { return false; }
-  // The parts of its plug-in's outputs its subscribers take (Plugin::set_parts; all bits: everything).
-  virtual uint32_t parts() const { return ~0u; }
-  // One output of its plug-in instance, as messages.
-  virtual void publish(const car_sim::Output& out, NodeContext& node) = 0;
-  // The same, with the output's ownership: an adapter whose messages are serialised straight from the output's
-  // arrays on the publishing thread (the cameras) keeps it until they are sent.
-  virtual void publish_owned(std::shared_ptr<const car_sim::Output> out, NodeContext& node) { publish(*out, node); }
+ private:
+  std::map<std::string, std::pair<const void*, GoalSink>> goal_sinks_;
 };
-
-struct AdapterKind {
-  const char* kind;                      // the plug-in kind's registry name
-  std::unique_ptr<Adapter> (*make)();
-};
-
-// The adapter of a kind; nullptr when the kind has none (its outputs are not published).
-const AdapterKind* find_adapter(const std::string& kind);
 
 // The tf_prefix parameter as gazebo_plugins' drives read it (tf::getPrefixParam on a node handle in the plug-in's
 // namespace: searchParam upwards from /NS); "" when none is set (docs/COMPAT-spawn.md rule 4).

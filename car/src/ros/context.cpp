@@ -1,5 +1,5 @@
-// What every adapter shares.
-#include "adapter.hpp"
+// What every part of the bridge shares.
+#include "context.hpp"
 
 namespace car_ros {
 
