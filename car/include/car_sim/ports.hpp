@@ -142,6 +142,9 @@ struct OdometrySample {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   Eigen::Vector3d linear = Eigen::Vector3d::Zero();   // [m/s]
   Eigen::Vector3d angular = Eigen::Vector3d::Zero();  // [rad/s]
+  // The pose's orientation as the kind computes it, when it has its own (ros_controllers' quaternion from the
+  // yaw: w = cos(yaw/2), z = sin(yaw/2)); none: taken from `pose`.
+  std::optional<Eigen::Quaterniond> orientation;
 };
 
 // ---- cameras -----------------------------------------------------------------------------------------------

@@ -319,6 +319,12 @@ void OutputPorts::publish(std::shared_ptr<const car_sim::Output> owned, NodeCont
         m.header.frame_id = p.frame;
         m.child_frame_id = p.child_frame;
         m.pose.pose = to_pose(o.pose);
+        if (o.orientation) {
+          m.pose.pose.orientation.x = o.orientation->x();
+          m.pose.pose.orientation.y = o.orientation->y();
+          m.pose.pose.orientation.z = o.orientation->z();
+          m.pose.pose.orientation.w = o.orientation->w();
+        }
         m.twist.twist = to_twist(o.linear, o.angular);
         for (int i = 0; i < 6; ++i) {
           m.pose.covariance[i * 7] = p.port.pose_covariance[i];
@@ -330,6 +336,7 @@ void OutputPorts::publish(std::shared_ptr<const car_sim::Output> owned, NodeCont
           t.header = m.header;
           t.child_frame_id = m.child_frame_id;
           t.transform = to_transform(o.pose);
+          t.transform.rotation = m.pose.pose.orientation;
         }
         if (p.port.tf == car_sim::TfOrder::Before) node.send_tf(std::move(t));
         if (p.pub) node.publish(p.pub, std::move(m));

@@ -10,7 +10,8 @@ namespace car_sim {
 namespace control {
 
 bool DiffDriveOdometryOutput::odometry_sample(OdometrySample* s) const {
-  s->pose = Eigen::Translation3d(x, y, 0.0) * Eigen::Quaterniond(std::cos(heading / 2), 0, 0, std::sin(heading / 2));
+  s->orientation = Eigen::Quaterniond(std::cos(heading / 2), 0, 0, std::sin(heading / 2));
+  s->pose = Eigen::Translation3d(x, y, 0.0) * *s->orientation;
   s->linear = Eigen::Vector3d(linear, 0, 0);
   s->angular = Eigen::Vector3d(0, 0, angular);
   return true;
