@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <map>
@@ -163,6 +164,12 @@ struct ImageSample {
   const float* points = nullptr;       // x y z per pixel [m], optical frame (z forward, x right, y down)
   const uint8_t* point_rgb = nullptr;  // r g b per pixel
 };
+
+// A depth [m] as a 16UC1 depth image carries it (openni_kinect's rule): millimetres, rounded, 0 where there is no
+// depth (NaN). Inline: the bridge calls it per pixel.
+inline uint16_t depth_mm(float d) { return std::isfinite(d) ? static_cast<uint16_t>(std::lround(d * 1000.0f)) : 0; }
+// Whether a pixel of the organized cloud has a point (x y z [m]; z is its depth, NaN where there is none).
+inline bool has_point(const float* xyz) { return std::isfinite(xyz[2]); }
 
 // What an Image, CameraInfo, DepthImage or DepthCloud port needs besides its topic and frame, resolved from the
 // kind's schema (gazebo_ros_camera_utils' keys).

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -218,5 +219,22 @@ class World {
 // throws; then the exception of the first failing world in list order is rethrown. The result is the same bit for
 // bit as stepping each world alone, in any order, on any number of threads.
 void step_worlds(const std::vector<World*>& worlds, uint64_t n = 1);
+
+// ---- the numbers the gazebo_ros API takes (docs/COMPAT.md "Every service") ---------------------------------------
+// World's methods run these checks before they look up any name; a skin that answers a bad number before its own
+// look-ups (the ROS services: a reference frame) calls the same check first. Each throws std::invalid_argument
+// with the reason, to which the ROS services put their name in front ("SetModelState: pose and twist ...").
+
+// Every number of a pose and twist: "pose and twist must be finite numbers".
+void check_state(const ModelState& s);
+// A joint effort [N m] or [N]: "effort must be a finite number".
+void check_effort(double effort);
+// gazebo_msgs/SetPhysicsProperties' numbers: gravity [m/s^2], time_step [s] and max_update_rate [Hz] finite, and the
+// rate >= 0 (steps per wall second, 0 = as fast as possible: the skin's pace, which no World holds):
+// "gravity, time_step and max_update_rate must be finite (max_update_rate >= 0)".
+void check_physics_properties(const Eigen::Vector3d& gravity, double time_step, double max_update_rate);
+// Steps of dt [s] from sim time now [s] to the first step at or after sim time t [s]: where a skin stops a run
+// (the ROS node's ~pause_at). nullopt unless t is a finite time after now.
+std::optional<uint64_t> steps_until(double now, double t, double dt);
 
 }  // namespace car_sim

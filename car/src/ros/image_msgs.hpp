@@ -8,7 +8,6 @@
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/PointCloud2.h>
 
-#include <cmath>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -35,10 +34,9 @@ struct DepthView : FrameView {
 };
 struct CloudView : FrameView {};
 
-// A depth [m] in millimetres, 0 where there is no depth (NaN).
-inline uint16_t depth_mm(float d) { return std::isfinite(d) ? static_cast<uint16_t>(std::lround(d * 1000.0f)) : 0; }
-// A point of the cloud has a depth (its z).
-inline bool has_point(const float* xyz) { return std::isfinite(xyz[2]); }
+// The depth image's millimetres and the cloud's missing points: the core's rules (car_sim/ports.hpp), inline.
+using car_sim::depth_mm;
+using car_sim::has_point;
 // rgb packed as 0x00RRGGBB in a float's bits, as PCL and rviz read it
 inline uint32_t packed_rgb(const uint8_t* rgb) {
   return (uint32_t(rgb[0]) << 16) | (uint32_t(rgb[1]) << 8) | uint32_t(rgb[2]);

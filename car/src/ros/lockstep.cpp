@@ -1,7 +1,8 @@
 #include "lockstep.hpp"
 
-#include <cmath>
 #include <sstream>
+
+#include "params.hpp"
 
 namespace car_ros {
 
@@ -39,8 +40,7 @@ std::vector<std::string> entries(ros::NodeHandle& pnh) {
 bool Lockstep::configure(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
   nh_ = nh;
   double timeout = 5.0;
-  pnh.param("lockstep_timeout", timeout, 5.0);
-  if (!(timeout > 0.0) || !std::isfinite(timeout)) {
+  if (!finite_param(pnh, "lockstep_timeout", 5.0, timeout) || timeout <= 0.0) {
     ROS_WARN("car: parameter ~lockstep_timeout must be > 0 [s], got %g: using 5", timeout);
     timeout = 5.0;
   }

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "conversions.hpp"
+#include "params.hpp"
 
 namespace car_ros {
 
@@ -22,7 +23,7 @@ ros::Time SimNode::stamp(uint64_t tick) const { return sim_time(tick, world_->dt
 bool SimNode::init() {
   std::string world_file;
   pnh_.param<std::string>("world_name", world_file, "");
-  pnh_.param("rtf", rtf_, 1.0);
+  const bool rtf_finite = finite_param(pnh_, "rtf", 1.0, rtf_);
   pnh_.param("paused", paused_, false);
   pnh_.param("clock_rate", clock_rate_, 100.0);
   pnh_.param("joint_state_rate", joint_state_rate_, 50.0);
@@ -45,7 +46,7 @@ bool SimNode::init() {
     return false;
   }
   iters_ = iters;
-  if (!(rtf_ >= 0.0) || !std::isfinite(rtf_)) {
+  if (!rtf_finite || rtf_ < 0.0) {
     ROS_FATAL("car: parameter ~rtf must be >= 0 (0 = as fast as possible), got %g", rtf_);
     return false;
   }

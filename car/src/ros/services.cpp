@@ -13,15 +13,17 @@ namespace {
 
 bool world_frame(const std::string& f) { return f.empty() || f == "world" || f == "map" || f == "/map"; }
 
-bool finite(const geometry_msgs::Pose& p) {
-  return std::isfinite(p.position.x) && std::isfinite(p.position.y) && std::isfinite(p.position.z) &&
-         std::isfinite(p.orientation.x) && std::isfinite(p.orientation.y) && std::isfinite(p.orientation.z) &&
-         std::isfinite(p.orientation.w);
-}
-
-bool finite(const geometry_msgs::Twist& t) {
-  return std::isfinite(t.linear.x) && std::isfinite(t.linear.y) && std::isfinite(t.linear.z) &&
-         std::isfinite(t.angular.x) && std::isfinite(t.angular.y) && std::isfinite(t.angular.z);
+// A check of the core's (car_sim::check_state...) run before the service's own look-ups: its refusal becomes the
+// answer "SERVICE: reason"; true when refused.
+template <class Check>
+bool refused(const char* service, std::string& status_message, Check&& check) {
+  try {
+    check();
+    return false;
+  } catch (const std::invalid_argument& e) {
+    status_message = std::string(service) + ": " + e.what();
+    return true;
+  }
 }
 
 Eigen::Vector3d vec(const geometry_msgs::Vector3& v) { return Eigen::Vector3d(v.x, v.y, v.z); }
@@ -205,17 +207,15 @@ bool SimNode::set_state(gazebo_msgs::SetModelState::Request& req, gazebo_msgs::S
     res.status_message = "SetModelState: model [" + m.model_name + "] does not exist";
     return true;
   }
-  if (!finite(m.pose) || !finite(m.twist)) {
-    res.status_message = "SetModelState: pose and twist must be finite numbers";
-    return true;
-  }
+  // the conversion keeps a non-finite number non-finite (normalising a quaternion with NaN or inf gives NaN)
+  car_sim::ModelState s = state_of(m.pose, m.twist);
+  if (refused("SetModelState", res.status_message, [&] { car_sim::check_state(s); })) return true;
   bool world = false;
   const auto frame = entity_state(m.reference_frame, &world);
   if (!world && !frame) {
     res.status_message = "SetModelState: specified reference frame entity [" + m.reference_frame + "] does not exist";
     return true;
   }
-  car_sim::ModelState s = state_of(m.pose, m.twist);
   if (frame) s = in_world(*frame, s);
   try {
     world_->set_model_state(m.model_name, s);
@@ -269,8 +269,8 @@ bool SimNode::unpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   if (pnh_.getParam("pause_at", at)) {
     pnh_.deleteParam("pause_at");
     const double now = stamp(world_->tick()).toSec();
-    if (std::isfinite(at) && at > now) {
-      pause_at_tick_ = world_->tick() + static_cast<uint64_t>(std::ceil((at - now) / world_->dt() - 1e-9));
+    if (const auto steps = car_sim::steps_until(now, at, world_->dt())) {
+      pause_at_tick_ = world_->tick() + *steps;
     } else {
       ROS_WARN("car: ~pause_at %g is not after the sim time %.3f s: ignored", at, now);
     }
@@ -319,17 +319,14 @@ bool SimNode::set_link_state(gazebo_msgs::SetLinkState::Request& req, gazebo_msg
     res.status_message = std::string("SetLinkState: link does not exist (") + e.what() + ")";
     return true;
   }
-  if (!finite(m.pose) || !finite(m.twist)) {
-    res.status_message = "SetLinkState: pose and twist must be finite numbers";
-    return true;
-  }
+  car_sim::ModelState s = state_of(m.pose, m.twist);
+  if (refused("SetLinkState", res.status_message, [&] { car_sim::check_state(s); })) return true;
   bool world = false;
   const auto frame = entity_state(m.reference_frame, &world);
   if (!world && !frame) {
     res.status_message = "SetLinkState: reference frame [" + m.reference_frame + "] is not a valid entity name";
     return true;
   }
-  car_sim::ModelState s = state_of(m.pose, m.twist);
   if (frame) s = in_world(*frame, s);
   try {
     world_->set_link_state(link, s);
@@ -469,10 +466,7 @@ bool SimNode::apply_wrench(gazebo_msgs::ApplyBodyWrench::Request& req, gazebo_ms
 bool SimNode::apply_effort(gazebo_msgs::ApplyJointEffort::Request& req,
                            gazebo_msgs::ApplyJointEffort::Response& res) {
   res.success = false;
-  if (!std::isfinite(req.effort)) {
-    res.status_message = "ApplyJointEffort: effort must be a finite number";
-    return true;
-  }
+  if (refused("ApplyJointEffort", res.status_message, [&] { car_sim::check_effort(req.effort); })) return true;
   try {
     world_->apply_joint_effort(req.joint_name, req.effort, req.start_time.toSec(), req.duration.toSec());
   } catch (const std::invalid_argument& e) {
@@ -518,12 +512,9 @@ bool SimNode::set_physics(gazebo_msgs::SetPhysicsProperties::Request& req,
                           gazebo_msgs::SetPhysicsProperties::Response& res) {
   res.success = false;
   const Eigen::Vector3d g = vec(req.gravity);
-  if (!g.allFinite() || !std::isfinite(req.time_step) || !std::isfinite(req.max_update_rate) ||
-      req.max_update_rate < 0.0) {
-    res.status_message = "SetPhysicsProperties: gravity, time_step and max_update_rate must be finite "
-                         "(max_update_rate >= 0)";
+  if (refused("SetPhysicsProperties", res.status_message,
+              [&] { car_sim::check_physics_properties(g, req.time_step, req.max_update_rate); }))
     return true;
-  }
   if (std::abs(req.time_step - world_->dt()) > 1e-12) {
     res.status_message = "SetPhysicsProperties: time_step " + std::to_string(req.time_step) +
                          " s: car keeps the world file's step (" + std::to_string(world_->dt()) +

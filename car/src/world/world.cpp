@@ -358,8 +358,7 @@ ModelState World::model_state(const std::string& name) const {
 }
 
 void World::set_model_state(const std::string& name, const ModelState& st) {
-  if (!st.pose.matrix().allFinite() || !st.linear.allFinite() || !st.angular.allFinite())
-    throw std::invalid_argument("the state to set for '" + name + "' is not finite");
+  check_state(st);
   if (auto* r = impl_->find(name)) {
     r->body->set_root_state(st);
   } else if (!impl_->phys->set_world_model_state(name, st)) {
@@ -563,10 +562,6 @@ std::pair<std::string, std::string> scoped(const std::string& name) {
   return {name.substr(0, at), name.substr(at + 2)};
 }
 
-bool finite(const ModelState& s) {
-  return s.pose.matrix().allFinite() && s.linear.allFinite() && s.angular.allFinite();
-}
-
 int64_t first_tick(double start, double dt, uint64_t now) {
   const double t = std::ceil(start / dt - 1e-9);
   return std::max<int64_t>(static_cast<int64_t>(now), static_cast<int64_t>(std::max(t, 0.0)));
@@ -648,7 +643,7 @@ ModelState World::link_state(const LinkRef& link) const {
 }
 
 void World::set_link_state(const LinkRef& link, const ModelState& target) {
-  if (!finite(target)) throw std::invalid_argument("the link state must be finite");
+  check_state(target);
   // link frame in the model frame, now: the model goes where the link lands
   const ModelState model = model_state(link.model);
   const ModelState now = link_state(link);
@@ -799,8 +794,9 @@ void World::apply_wrench(const LinkRef& link, const Eigen::Vector3d& force, cons
 }
 
 void World::apply_joint_effort(const std::string& joint, double effort, double start, double duration) {
-  if (!std::isfinite(effort) || !std::isfinite(start) || !std::isfinite(duration))
-    throw std::invalid_argument("the effort, start time and duration must be finite");
+  check_effort(effort);
+  if (!std::isfinite(start) || !std::isfinite(duration))
+    throw std::invalid_argument("the start time and duration must be finite");
   const auto [info, j] = find_joint(impl_->robots, joint);
   impl_->efforts.push_back({info->name, j->name, effort, first_tick(start, dt(), tick_),
                             last_tick(start, duration, dt(), tick_)});
@@ -872,6 +868,26 @@ void step_worlds(const std::vector<World*>& worlds, uint64_t n) {
   });
   for (const auto& e : errors)
     if (e) std::rethrow_exception(e);
+}
+
+void check_state(const ModelState& s) {
+  if (!s.pose.matrix().allFinite() || !s.linear.allFinite() || !s.angular.allFinite())
+    throw std::invalid_argument("pose and twist must be finite numbers");
+}
+
+void check_effort(double effort) {
+  if (!std::isfinite(effort)) throw std::invalid_argument("effort must be a finite number");
+}
+
+void check_physics_properties(const Eigen::Vector3d& gravity, double time_step, double max_update_rate) {
+  if (!gravity.allFinite() || !std::isfinite(time_step) || !std::isfinite(max_update_rate) || max_update_rate < 0.0)
+    throw std::invalid_argument("gravity, time_step and max_update_rate must be finite (max_update_rate >= 0)");
+}
+
+std::optional<uint64_t> steps_until(double now, double t, double dt) {
+  if (!std::isfinite(t) || !(t > now)) return std::nullopt;
+  // 1e-9 of a step: a time on a step's end, less its rounding, is that step
+  return static_cast<uint64_t>(std::ceil((t - now) / dt - 1e-9));
 }
 
 }  // namespace car_sim

@@ -103,3 +103,13 @@ def test_nan_command_is_a_value_error(car_xml):
     w.spawn_urdf(car_xml, 'mycar')
     with pytest.raises(ValueError, match='finite'):
         w.set_cmd_vel('mycar', float('nan'), 0.0)
+
+
+def test_nan_state_is_a_value_error_and_the_model_stays(car_xml):
+    # the core's check, the one the ROS set_model_state service answers with (docs/COMPAT.md "Every service")
+    w = _core.World()
+    w.spawn_urdf(car_xml, 'mycar', x=1.0)
+    before = list(w.model_state('mycar')['position'])
+    with pytest.raises(ValueError, match=r'^pose and twist must be finite numbers$'):
+        w.set_model_state('mycar', [float('nan'), 0.0, 0.0])
+    assert list(w.model_state('mycar')['position']) == before

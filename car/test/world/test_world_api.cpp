@@ -242,3 +242,93 @@ TEST(WorldApiPhysics, SolverIterations) {
   EXPECT_EQ(w->solver_iterations(), 50);
   EXPECT_THROW(w->set_solver_iterations(0), std::invalid_argument);
 }
+
+// ---- the checks of the numbers the API takes (world.hpp, docs/COMPAT.md "Every service"): exact reasons, made
+// before any name is looked up, the world untouched
+
+namespace {
+
+// The reason a call is refused with ("" when it is not).
+template <class F>
+std::string refusal(F&& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(WorldApiChecks, NonFiniteModelStateIsRefusedAndTheModelStays) {
+  auto w = floating();
+  ModelState bad = w->model_state("f");
+  bad.linear.y() = INFINITY;
+  EXPECT_EQ(refusal([&] { w->set_model_state("f", bad); }), "pose and twist must be finite numbers");
+  EXPECT_EQ(w->model_state("f").linear, Eigen::Vector3d::Zero());
+}
+
+TEST(WorldApiChecks, NonFiniteModelStateIsRefusedBeforeTheNameIsLookedUp) {
+  auto w = floating();
+  ModelState bad;
+  bad.pose.translation().x() = std::nan("");
+  EXPECT_EQ(refusal([&] { w->set_model_state("ghost", bad); }), "pose and twist must be finite numbers");
+}
+
+TEST(WorldApiChecks, NonFiniteLinkStateHasTheReason) {
+  auto w = floating();
+  ModelState bad;
+  bad.angular.z() = -INFINITY;
+  EXPECT_EQ(refusal([&] { w->set_link_state(w->find_link("spinner"), bad); }), "pose and twist must be finite numbers");
+}
+
+TEST(WorldApiChecks, NonFiniteEffortIsRefusedBeforeTheJointIsLookedUp) {
+  auto w = floating();
+  EXPECT_EQ(refusal([&] { w->apply_joint_effort("spin", INFINITY, 0.0, 1.0); }), "effort must be a finite number");
+  EXPECT_EQ(refusal([&] { w->apply_joint_effort("nope", std::nan(""), 0.0, 1.0); }), "effort must be a finite number");
+  w->step(10);
+  EXPECT_EQ(w->joint_properties("spin").velocity, 0.0);
+}
+
+TEST(WorldApiChecks, NonFiniteEffortTimingHasItsOwnReason) {
+  auto w = floating();
+  EXPECT_EQ(refusal([&] { w->apply_joint_effort("spin", 1.0, std::nan(""), 1.0); }),
+            "the start time and duration must be finite");
+  EXPECT_EQ(refusal([&] { w->apply_joint_effort("spin", 1.0, 0.0, INFINITY); }),
+            "the start time and duration must be finite");
+}
+
+// gazebo_msgs/SetPhysicsProperties' numbers, one bad at a time beside good ones (gravity -9.8 m/s^2, step 1 ms,
+// 1000 Hz)
+TEST(WorldApiChecks, NonFiniteOrNegativePhysicsPropertiesHaveTheReason) {
+  const std::string why = "gravity, time_step and max_update_rate must be finite (max_update_rate >= 0)";
+  const Eigen::Vector3d g(0, 0, -9.8);
+  EXPECT_EQ(refusal([&] { check_physics_properties(Eigen::Vector3d(0, std::nan(""), -9.8), 0.001, 1000.0); }), why);
+  EXPECT_EQ(refusal([&] { check_physics_properties(g, INFINITY, 1000.0); }), why);
+  EXPECT_EQ(refusal([&] { check_physics_properties(g, 0.001, std::nan("")); }), why);
+  EXPECT_EQ(refusal([&] { check_physics_properties(g, 0.001, INFINITY); }), why);
+  EXPECT_EQ(refusal([&] { check_physics_properties(g, 0.001, -1.0); }), why);
+}
+
+// 0 Hz: as fast as possible (Gazebo's real_time_update_rate 0)
+TEST(WorldApiChecks, ZeroUpdateRateIsAPhysicsProperty) {
+  EXPECT_EQ(refusal([] { check_physics_properties(Eigen::Vector3d(0, 0, -9.8), 0.001, 0.0); }), "");
+}
+
+// (1.0025 - 1) / 0.001 = 2.5 steps: the third step ends after the time
+TEST(WorldApiChecks, StepsUntilATimeBetweenSteps) {
+  EXPECT_EQ(steps_until(1.0, 1.0025, 0.001), std::optional<uint64_t>(3));
+}
+
+// (0.503 - 0.5) / 0.001 is 3.0000000000000027 in doubles: a time on a step's end is that step, not the next
+TEST(WorldApiChecks, StepsUntilATimeOnAStepsEnd) {
+  EXPECT_EQ(steps_until(0.5, 0.503, 0.001), std::optional<uint64_t>(3));
+}
+
+TEST(WorldApiChecks, StepsUntilNothingUnlessAFiniteTimeAfterNow) {
+  EXPECT_EQ(steps_until(2.0, 2.0, 0.001), std::nullopt);
+  EXPECT_EQ(steps_until(2.0, 1.0, 0.001), std::nullopt);
+  EXPECT_EQ(steps_until(2.0, std::nan(""), 0.001), std::nullopt);
+  EXPECT_EQ(steps_until(2.0, INFINITY, 0.001), std::nullopt);
+}

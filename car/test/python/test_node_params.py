@@ -1,0 +1,72 @@
+"""sim_node's number parameters that must be finite (src/ros/params.hpp): ~rtf NaN or inf stops the node with its
+reason, ~lockstep_timeout NaN or inf falls back to 5 s with a warning. Each sim_node runs against its own rosmaster
+on a free port. Needs the workspace (sim_node) sourced."""
+import os
+import signal
+import socket
+import subprocess
+import time
+
+import pytest
+import roslib.packages as roslib_packages
+
+BOUND = 120.0  # [s] wall: a bound against hanging, not a speed requirement
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(('localhost', 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture
+def master(tmp_path):
+    """A rosmaster of its own; the environment to run nodes against it."""
+    port = free_port()
+    env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port, ROS_LOG_DIR=str(tmp_path / 'log'),
+               ROS_HOME=str(tmp_path))
+    core = subprocess.Popen(['rosmaster', '--core', '-p', str(port)], env=env, start_new_session=True,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    yield env
+    os.killpg(core.pid, signal.SIGINT)
+    core.wait(timeout=30)
+
+
+def sim_node(env, *params, log):
+    return subprocess.Popen([roslib_packages.find_node('car', 'sim_node')[0]] + list(params), env=env,
+                            stdout=open(log, 'w'), stderr=subprocess.STDOUT)
+
+
+@pytest.mark.parametrize('value', ['nan', 'inf'])
+def test_non_finite_rtf_stops_the_node_with_the_reason(master, tmp_path, value):
+    node = sim_node(master, '_rtf:=' + value, log=tmp_path / 'node.log')
+    try:
+        rc = node.wait(timeout=BOUND)
+    except subprocess.TimeoutExpired:
+        node.kill()
+        node.wait()
+        pytest.fail('sim_node with ~rtf %s did not stop within %.0f s' % (value, BOUND))
+    log = (tmp_path / 'node.log').read_text()
+    assert rc == 1, log
+    assert 'car: parameter ~rtf must be >= 0 (0 = as fast as possible), got %s' % value in log, log
+
+
+@pytest.mark.parametrize('value', ['nan', 'inf'])
+def test_non_finite_lockstep_timeout_warns_and_uses_5_s(master, tmp_path, value):
+    node = sim_node(master, '_lockstep_timeout:=' + value, log=tmp_path / 'node.log')
+    line = 'car: parameter ~lockstep_timeout must be > 0 [s], got %s: using 5' % value
+    try:
+        deadline = time.monotonic() + BOUND
+        # the node reads ~lockstep_timeout once its world is loaded, then runs on
+        while line not in (tmp_path / 'node.log').read_text():
+            assert node.poll() is None, (tmp_path / 'node.log').read_text()
+            assert time.monotonic() < deadline, 'no warning about ~lockstep_timeout %s within %.0f s:\n%s' % (
+                value, BOUND, (tmp_path / 'node.log').read_text())
+            time.sleep(0.1)
+    finally:
+        node.send_signal(signal.SIGINT)
+        try:
+            node.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            node.kill()
+            node.wait()

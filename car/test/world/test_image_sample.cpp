@@ -1,0 +1,31 @@
+// The camera samples' rules in the core (ports.hpp): a depth in millimetres as openni_kinect's 16UC1 depth image
+// carries it, and which pixels of the organized cloud have a point. Values worked out by hand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "car_sim/ports.hpp"
+
+using namespace car_sim;
+
+TEST(ImageSampleDepth, MetresToRoundedMillimetres) {
+  EXPECT_EQ(depth_mm(1.5f), 1500);
+  EXPECT_EQ(depth_mm(2.0004f), 2000);  // 2000.4 mm
+  EXPECT_EQ(depth_mm(2.0006f), 2001);  // 2000.6 mm
+  EXPECT_EQ(depth_mm(0.0006f), 1);
+  EXPECT_EQ(depth_mm(65.535f), 65535);  // the largest 16-bit value
+}
+
+TEST(ImageSampleDepth, NoDepthIsZero) {
+  EXPECT_EQ(depth_mm(std::nanf("")), 0);
+  EXPECT_EQ(depth_mm(INFINITY), 0);
+}
+
+TEST(ImageSampleCloud, APointHasADepth) {
+  const float near[3] = {0.1f, -0.2f, 3.0f};
+  const float none[3] = {NAN, NAN, NAN};
+  const float no_depth[3] = {0.1f, -0.2f, NAN};
+  EXPECT_TRUE(has_point(near));
+  EXPECT_FALSE(has_point(none));
+  EXPECT_FALSE(has_point(no_depth));
+}
