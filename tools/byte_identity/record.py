@@ -2,7 +2,7 @@
 """Records every message of the given topics with stamp <= T sim seconds, after an optional scripted start, and
 prints per-topic count and sha256 of the serialized messages in arrival order (for before/after byte identity)."""
 import hashlib, io, sys, time
-import rospy, rostopic, actionlib
+import rospy, actionlib
 from controller_manager_msgs.srv import ListControllers
 from geometry_msgs.msg import Twist
 from std_srvs.srv import Empty
