@@ -32,6 +32,22 @@ std::string OutputPorts::setup_image(Port& p, NodeContext& node) {
   }
 }
 
+namespace {
+
+// A frame's view for the serialisers: the sample's arrays, the output that holds them, its frame and stamp.
+template <class V>
+V frame_view(const std::shared_ptr<const car_sim::Output>& out, car_sim::ImageSample s, const std::string& frame,
+             const ros::Time& stamp) {
+  V v;
+  v.owner = out;
+  v.sample = std::move(s);
+  v.frame = frame;
+  v.stamp = stamp;
+  return v;
+}
+
+}  // namespace
+
 void OutputPorts::publish_image(Port& p, const std::shared_ptr<const car_sim::Output>& out, const ros::Time& stamp,
                                 NodeContext& node) {
   using T = car_sim::SampleType;
@@ -42,12 +58,7 @@ void OutputPorts::publish_image(Port& p, const std::shared_ptr<const car_sim::Ou
   switch (p.port.type) {
     case T::Image: {
       if (!listened || !s.image) return;
-      ImageView v;
-      v.owner = out;
-      v.sample = std::move(s);
-      v.frame = p.frame;
-      v.stamp = stamp;
-      node.publish(p.pub, std::move(v));
+      node.publish(p.pub, frame_view<ImageView>(out, std::move(s), p.frame, stamp));
       return;
     }
     case T::CameraInfo: {
@@ -62,23 +73,14 @@ void OutputPorts::publish_image(Port& p, const std::shared_ptr<const car_sim::Ou
     }
     case T::DepthImage: {
       if (!listened || !s.depth) return;
-      DepthView v;
-      v.owner = out;
-      v.sample = std::move(s);
-      v.frame = p.frame;
-      v.stamp = stamp;
+      DepthView v = frame_view<DepthView>(out, std::move(s), p.frame, stamp);
       v.millimetres = p.port.image.millimetres;
       node.publish(p.pub, std::move(v));
       return;
     }
     case T::DepthCloud: {
       if (!listened || !s.points) return;
-      CloudView v;
-      v.owner = out;
-      v.sample = std::move(s);
-      v.frame = p.frame;
-      v.stamp = stamp;
-      node.publish(p.pub, std::move(v));
+      node.publish(p.pub, frame_view<CloudView>(out, std::move(s), p.frame, stamp));
       return;
     }
     default: return;
