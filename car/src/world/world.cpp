@@ -139,6 +139,13 @@ struct World::Impl : WorldAccess {
     return nullptr;
   }
 
+  // The same, for the API calls that name one: throws std::invalid_argument when there is none.
+  Instance& known_instance(const std::string& robot, const std::string& plugin) const {
+    Instance* i = instance(robot, plugin);
+    if (!i) throw std::invalid_argument("robot '" + robot + "' has no plug-in '" + plugin + "'");
+    return *i;
+  }
+
   // A plug-in instance for a resolved configuration, not yet configured.
   Instance make_instance(const RobotRt& r, const PluginConfig& c) const {
     const PluginKind* kind = find_plugin_kind(c.kind);
@@ -399,8 +406,7 @@ std::vector<PluginInfo> World::sensors() const {
 }
 
 void World::set_plugin_active(const std::string& robot, const std::string& plugin, bool active) {
-  Instance* i = impl_->instance(robot, plugin);
-  if (!i) throw std::invalid_argument("robot '" + robot + "' has no plug-in '" + plugin + "'");
+  Instance* i = &impl_->known_instance(robot, plugin);
   if (active && !i->active) i->plugin->set_active(true);
   if (!active && i->active) i->plugin->set_active(false);
   i->active = active;
@@ -500,8 +506,7 @@ std::string non_finite(const Command& value) {
 
 CommandResult World::command(const std::string& robot, const std::string& plugin, const std::string& port,
                              Command value) {
-  Instance* i = impl_->instance(robot, plugin);
-  if (!i) throw std::invalid_argument("robot '" + robot + "' has no plug-in '" + plugin + "'");
+  Instance* i = &impl_->known_instance(robot, plugin);
   const InputPort* p = nullptr;
   for (const InputPort& q : i->info.inputs)
     if (q.name == port) p = &q;
@@ -527,8 +532,7 @@ CommandResult World::command(const std::string& robot, const std::string& plugin
 
 CallResponse World::call(const std::string& robot, const std::string& plugin, const std::string& service,
                           const CallRequest& request) {
-  Instance* i = impl_->instance(robot, plugin);
-  if (!i) throw std::invalid_argument("robot '" + robot + "' has no plug-in '" + plugin + "'");
+  Instance* i = &impl_->known_instance(robot, plugin);
   const ServicePort* s = nullptr;
   for (const ServicePort& q : i->info.services)
     if (q.name == service) s = &q;
@@ -544,8 +548,7 @@ CallResponse World::call(const std::string& robot, const std::string& plugin, co
 }
 
 const PluginInfo& World::plugin_info(const std::string& robot, const std::string& plugin) const {
-  const Instance* i = impl_->instance(robot, plugin);
-  if (!i) throw std::invalid_argument("robot '" + robot + "' has no plug-in '" + plugin + "'");
+  const Instance* i = &impl_->known_instance(robot, plugin);
   return i->info;
 }
 
