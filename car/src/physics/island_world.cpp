@@ -12,6 +12,7 @@
 #include "car_sim/parallel.hpp"
 
 #include <algorithm>
+#include <cstring>
 
 namespace car_sim {
 namespace physics {
@@ -88,6 +89,19 @@ bool settled(const btBroadphasePair& p) {
   for (int i = 0; i < compound->getNumChildShapes(); ++i)
     if (!dynamic_cast<const btConvexPlaneCollisionAlgorithm*>(c->getChildAlgorithm(i))) return false;
   return true;
+}
+
+// The same bits in the nine entries of the basis and the three of the origin (not the padding).
+bool same(const btTransform& a, const btTransform& b) {
+  for (int r = 0; r < 3; ++r)
+    if (std::memcmp(a.getBasis()[r].m_floats, b.getBasis()[r].m_floats, 3 * sizeof(btScalar)) != 0) return false;
+  return std::memcmp(a.getOrigin().m_floats, b.getOrigin().m_floats, 3 * sizeof(btScalar)) == 0;
+}
+
+// All three components +0.0, bit for bit (what Bullet writes into a sleeping body's velocities).
+bool positive_zero(const btVector3& v) {
+  static const btScalar zero[3] = {0, 0, 0};
+  return std::memcmp(v.m_floats, zero, sizeof zero) == 0;
 }
 
 }  // namespace
@@ -347,9 +361,84 @@ void IslandWorld::predictUnconstraintMotion(btScalar dt) {
     btMultiBodyDynamicsWorld::predictUnconstraintMotion(dt);
     return;
   }
-  btDiscreteDynamicsWorld::predictUnconstraintMotion(dt);
+  predict_rigid_bodies(dt);
   for (int i = 0; i < m_multiBodies.size(); ++i)
     if (sleeping(m_multiBodies[i])) m_multiBodies[i]->clearVelocities();
+}
+
+// btDiscreteDynamicsWorld::predictUnconstraintMotion (damping, then the predicted transform), skipping a body at rest
+// whose prediction is already in place (Prediction). The damping of +0 velocities is +0 again (Bullet clamps the
+// damping to [0, 1], so the factor is finite and non-negative; car never turns on Bullet's additional damping).
+void IslandWorld::predict_rigid_bodies(btScalar dt) {
+  if (!reuse_) {
+    btDiscreteDynamicsWorld::predictUnconstraintMotion(dt);
+    return;
+  }
+  predictions_.resize(m_nonStaticRigidBodies.size());
+  for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i) {
+    btRigidBody* body = m_nonStaticRigidBodies[i];
+    if (body->isStaticOrKinematicObject()) continue;
+    Prediction& p = predictions_[i];
+    const bool rest = positive_zero(body->getLinearVelocity()) && positive_zero(body->getAngularVelocity());
+    if (rest && p.body == body && p.dt == dt && same(p.from, body->getWorldTransform()) &&
+        same(p.to, body->getInterpolationWorldTransform()))
+      continue;
+    body->applyDamping(dt);
+    body->predictIntegratedTransform(dt, body->getInterpolationWorldTransform());
+    // only a prediction from +0 velocities can be reused (a body falls asleep with the velocities of its last step)
+    p.body = rest ? body : nullptr;
+    p.dt = dt;
+    p.from = body->getWorldTransform();
+    p.to = body->getInterpolationWorldTransform();
+  }
+}
+
+// btCollisionWorld::updateAabbs and updateSingleAabb, with last step's box where its inputs are the same (Box).
+void IslandWorld::updateAabbs() {
+  if (!reuse_) {
+    btCollisionWorld::updateAabbs();
+    return;
+  }
+  boxes_.resize(m_collisionObjects.size());
+  const btScalar threshold = gContactBreakingThreshold;
+  const btVector3 margin(threshold, threshold, threshold);
+  for (int i = 0; i < m_collisionObjects.size(); ++i) {
+    btCollisionObject* o = m_collisionObjects[i];
+    if (!m_forceUpdateAllAabbs && !o->isActive()) continue;
+    const bool swept = getDispatchInfo().m_useContinuous && o->getInternalType() == btCollisionObject::CO_RIGID_BODY &&
+                       !o->isStaticOrKinematicObject();
+    const bool fixed = o->isStaticObject();
+    Box& b = boxes_[i];
+    if (!(b.object == o && b.shape == o->getCollisionShape() && b.threshold == threshold && b.swept == swept &&
+          b.fixed == fixed && same(b.world, o->getWorldTransform()) &&
+          (!swept || same(b.interpolation, o->getInterpolationWorldTransform())))) {
+      b.object = nullptr;
+      o->getCollisionShape()->getAabb(o->getWorldTransform(), b.min, b.max);
+      b.min -= margin;
+      b.max += margin;
+      if (swept) {
+        btVector3 min, max;
+        o->getCollisionShape()->getAabb(o->getInterpolationWorldTransform(), min, max);
+        min -= margin;
+        max += margin;
+        b.min.setMin(min);
+        b.max.setMax(max);
+      }
+      // Bullet's overflow rule: a moving object over 1e6 m across is disabled, with a report
+      if (!fixed && !((b.max - b.min).length2() < btScalar(1e12))) {
+        updateSingleAabb(o);
+        continue;
+      }
+      b.object = o;
+      b.shape = o->getCollisionShape();
+      b.world = o->getWorldTransform();
+      b.interpolation = o->getInterpolationWorldTransform();
+      b.threshold = threshold;
+      b.swept = swept;
+      b.fixed = fixed;
+    }
+    m_broadphasePairCache->setAabb(o->getBroadphaseHandle(), b.min, b.max, m_dispatcher1);
+  }
 }
 
 // Whether a rigid body may sweep (Bullet's test in btDiscreteDynamicsWorld::integrateTransforms).

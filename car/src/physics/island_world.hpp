@@ -46,6 +46,8 @@ class IslandWorld : public btMultiBodyDynamicsWorld {
 
   // How every solver of this world sets up its rows.
   void set_row_setup(RowSetup rows);
+  // Whether predictUnconstraintMotion and updateAabbs reuse an object's unchanged results (Prediction, Box).
+  void set_reuse_at_rest(bool on) { reuse_ = on; }
 
   // Bullet's, with the multibodies integrated in their islands' tasks, or on the OpenMP threads.
   void integrateTransforms(btScalar dt) override;
@@ -53,6 +55,11 @@ class IslandWorld : public btMultiBodyDynamicsWorld {
   // Bullet's, without the multibodies' predicted transforms when no rigid body sweeps (CCD): those transforms
   // (btMultiBody::predictPositionsMultiDof, the colliders' interpolation transforms) are read by nothing else.
   void predictUnconstraintMotion(btScalar dt) override;
+
+  // Bullet's, except that a collider whose bounding box would be computed from the same inputs as last step
+  // (shape, transforms, thresholds: a static shape, a sleeping object) gets last step's box again. The box still
+  // goes to the broad phase every step, as in Bullet, so the broad phase's order is Bullet's.
+  void updateAabbs() override;
 
  protected:
   void solveConstraints(btContactSolverInfo& info) override;
@@ -85,6 +92,29 @@ class IslandWorld : public btMultiBodyDynamicsWorld {
   void island_task(int k, SurfaceSolver& solver, Scratch& s, const btContactSolverInfo& info);
   void integrate(btMultiBody* b, Scratch& s, btScalar dt);
   bool ccd_bodies() const;
+  void predict_rigid_bodies(btScalar dt);
+
+  // A rigid body's predicted transform (btRigidBody::predictIntegratedTransform into its interpolation transform)
+  // and what it came from. At zero velocity Bullet's damping changes no bit, so when the body's transform, its
+  // zero velocities, dt and the prediction itself are what they were, predicting again is skipped: the same
+  // function of the same bits. That is every sleeping object of a world at each step.
+  struct Prediction {
+    const btRigidBody* body = nullptr;
+    btTransform from, to;
+    btScalar dt = 0;
+  };
+  std::vector<Prediction> predictions_;  // per m_nonStaticRigidBodies index
+  // A collider's last bounding box (btCollisionWorld::updateSingleAabb's, thresholds added) and its inputs.
+  struct Box {
+    const btCollisionObject* object = nullptr;
+    const btCollisionShape* shape = nullptr;
+    btTransform world, interpolation;
+    btScalar threshold = 0;
+    bool swept = false;  // the interpolation transform's box is part of it (Bullet's CCD rule)
+    bool fixed = false;  // a static object (Bullet passes its box whatever its size)
+    btVector3 min, max;
+  };
+  std::vector<Box> boxes_;  // per collision object index
   // Runs f(body, scratch) for every multibody, on one thread or on all (same result bit for bit).
   template <class F>
   void for_each_multibody(F&& f);
@@ -102,6 +132,7 @@ class IslandWorld : public btMultiBodyDynamicsWorld {
   std::vector<int> owner_;          // per multibody: its island's index (islands_.size(): none)
   std::vector<int> island_mbs_;     // multibody indices grouped by island
   std::vector<int> island_count_;
+  bool reuse_ = true;
   bool integrated_ = false;  // this step's islands' tasks integrated the multibodies
 };
 

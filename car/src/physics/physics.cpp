@@ -708,6 +708,7 @@ Physics::Impl::Impl(const WorldDescription& d, const Options& o) : options(o) {
   // carry the whole previous impulse over, so a resting solution keeps converging from step to step
   si.m_warmstartingFactor = 1.0;
   world.set_row_setup(o.rows);
+  world.set_reuse_at_rest(o.reuse_at_rest);
   gCalculateCombinedFrictionCallback = &min_friction;
   gCalculateCombinedRestitutionCallback = &no_restitution;
 }

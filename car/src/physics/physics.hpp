@@ -30,13 +30,17 @@ struct Options {
   double residual_threshold = 1e-9;
   double dt = 0.001;  // [s]; motors cap their impulse at effort * dt
   RowSetup rows = RowSetup::factored;
+  // Skip the work Bullet would repeat bit for bit for an object at rest: its predicted transform and its bounding
+  // box (IslandWorld). false: Bullet's own passes, the tests' reference.
+  bool reuse_at_rest = true;
 };
 
 class Robot;
 
 class Physics {
  public:
-  // The world's models (less the removed ones) and gravity.
+  // The world's models (less the removed ones) and gravity. `desc` must outlive the Physics: the world models'
+  // poses are read from it.
   Physics(const WorldDescription& desc, const Options& options, const std::set<std::string>& removed);
   ~Physics();
   Physics(const Physics&) = delete;
