@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <new>
 
 namespace car_sim {
 namespace physics {
@@ -153,9 +154,12 @@ struct IslandWorld::Collector : btSimulationIslandManager::IslandCallback {
     s.bodies = w->bodies_.size();
     s.num_bodies = num_bodies;
     for (int i = 0; i < num_bodies; ++i) w->bodies_.push_back(bodies[i]);
+    // a manifold with no contact point makes no row; it may join this island to a sleeping object (islands are
+    // joined by contact, ContactIslands), whose velocities a solve must not touch
     s.manifolds = w->manifolds_.size();
-    s.num_manifolds = num_manifolds;
-    for (int i = 0; i < num_manifolds; ++i) w->manifolds_.push_back(manifolds[i]);
+    for (int i = 0; i < num_manifolds; ++i)
+      if (manifolds[i]->getNumContacts() > 0) w->manifolds_.push_back(manifolds[i]);
+    s.num_manifolds = w->manifolds_.size() - s.manifolds;
     if (island < 0) {
       // islands not split: one problem with everything
       s.num_constraints = w->m_sortedConstraints.size();
@@ -168,10 +172,41 @@ struct IslandWorld::Collector : btSimulationIslandManager::IslandCallback {
   }
 };
 
+// Simulation islands joined by contact, as ODE joins them (Gazebo): two objects are one island when a manifold
+// between them holds a contact point, not, as in Bullet's findUnions, when their bounding boxes overlap. So a
+// resting object is woken by a touch (ODE's auto-enable through a contact joint), not by a robot passing by.
+// Tags as Bullet's updateActivationState gives them (STATIC_SIMULATION_ISLAND_OPTIMIZATION: static and kinematic
+// objects get none).
+class ContactIslands : public btSimulationIslandManager {
+ public:
+  void updateActivationState(btCollisionWorld* world, btDispatcher* dispatcher) override {
+    int index = 0;
+    const btCollisionObjectArray& objects = world->getCollisionObjectArray();
+    for (int i = 0; i < objects.size(); ++i) {
+      btCollisionObject* o = objects[i];
+      if (!o->isStaticOrKinematicObject()) o->setIslandTag(index++);
+      o->setCompanionId(-1);
+      o->setHitFraction(btScalar(1.));
+    }
+    initUnionFind(index);
+    for (int i = 0; i < dispatcher->getNumManifolds(); ++i) {
+      const btPersistentManifold* m = dispatcher->getManifoldByIndexInternal(i);
+      if (m->getNumContacts() == 0) continue;
+      const btCollisionObject *a = m->getBody0(), *b = m->getBody1();
+      if (a && a->mergesSimulationIslands() && b && b->mergesSimulationIslands())
+        getUnionFind().unite(a->getIslandTag(), b->getIslandTag());
+    }
+  }
+};
+
 IslandWorld::IslandWorld(btDispatcher* dispatcher, btBroadphaseInterface* broadphase, SurfaceSolver* solver,
                          btCollisionConfiguration* config)
     : btMultiBodyDynamicsWorld(dispatcher, broadphase, solver, config), collector_(std::make_unique<Collector>()) {
   collector_->w = this;
+  // Bullet's world made its island manager with btAlignedAlloc and placement new, and frees it so
+  m_islandManager->~btSimulationIslandManager();
+  btAlignedFree(m_islandManager);
+  m_islandManager = new (btAlignedAlloc(sizeof(ContactIslands), 16)) ContactIslands();
   solvers_.push_back(solver);
   const int threads = parallel_threads();
   for (int t = 1; t < threads; ++t) {
