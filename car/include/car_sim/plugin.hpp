@@ -173,6 +173,9 @@ class Plugin {
   virtual std::vector<std::string> driven_joints() const { return {}; }
   // Binds to the robot: looks its joints and links up, adds motors. Once, after the robot's bodies exist.
   virtual void configure(RobotHandle& robot) {}
+  // What configure found, for the log line that says what loaded ("2 transmissions, 2 joints"); "" for nothing
+  // beyond the ports.
+  virtual std::string summary() const { return ""; }
   // Every step, before physics: motor targets, forces.
   virtual void pre_physics(const StepContext& ctx, RobotHandle& robot) {}
   // Every step after physics, read-only: integrators between updates. A lazy plug-in only while active.

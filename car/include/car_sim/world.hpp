@@ -38,6 +38,7 @@ struct PluginInfo {
   std::vector<InputPort> inputs;    // its input ports, topics resolved (the kind's `inputs`)
   std::vector<OutputPort> outputs;  // its output ports, topics and frames resolved (the kind's `outputs`)
   std::vector<ServicePort> services;  // its services, names resolved (the kind's `services`)
+  std::string summary;              // what it bound to when configured (Plugin::summary), for the log
 };
 
 // What a spawned robot is, for the skins: its model, resolved plug-ins and namespace.

@@ -318,6 +318,7 @@ void SimNode::make_io(const std::string& name) {
     const std::string services =
         pio.services->setup(p, *this, [this, name, plugin] { ports_changed(name, plugin); });
     if (!services.empty()) offers += (offers.empty() ? "" : ", ") + services;
+    if (!p.summary.empty()) offers += (offers.empty() ? "" : ", ") + p.summary;
     route_[name][p.config.name] = {pio.outputs.get(), pio.inputs->polled() ? pio.inputs.get() : nullptr};
     if (!p.config.sensor.empty())
       ROS_INFO("car: %s: sensor '%s' (%s, %s) on %s at %g Hz: %s", name.c_str(), p.config.sensor.c_str(),

@@ -167,6 +167,7 @@ struct World::Impl : WorldAccess {
 
   void configure(RobotRt& r, Instance& i, uint64_t tick) {
     i.plugin->configure(r);
+    i.info.summary = i.plugin->summary();
     i.schedule = Schedule(i.info.rate, desc.step_size, tick);
   }
 

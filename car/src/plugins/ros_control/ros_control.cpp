@@ -207,6 +207,12 @@ static std::string control_ns(const PluginConfig& c, const std::string& robot) {
 RosControl::RosControl(const PluginConfig& c, const std::string& robot)
     : cfg_(RosControlConfig::from(c)), ns_(control_ns(c, robot)) {}
 
+std::string RosControl::summary() const {
+  const size_t t = model_ ? model_->transmissions.size() : 0;
+  return std::to_string(t) + (t == 1 ? " transmission, " : " transmissions, ") + std::to_string(joints_.size()) +
+         (joints_.size() == 1 ? " joint" : " joints");
+}
+
 void RosControl::configure(RobotHandle& robot) {
   model_ = &robot.model();
   for (const auto& t : model_->transmissions) {

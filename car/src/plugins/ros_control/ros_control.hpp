@@ -146,6 +146,7 @@ class RosControl : public Plugin, public control::Hardware {
   RosControl(const PluginConfig& c, const std::string& robot);
   double update_rate() const override { return 0.0; }
   void configure(RobotHandle& robot) override;
+  std::string summary() const override;
   void pre_physics(const StepContext& ctx, RobotHandle& robot) override;
   void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) override;
   void reset() override;

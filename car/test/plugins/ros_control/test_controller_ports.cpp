@@ -50,6 +50,12 @@ std::vector<std::string> names_topics(const std::vector<OutputPort>& ports) {
 
 }  // namespace
 
+// What the manager bound to, for the node's log line: the arm's two transmissions, one joint each.
+TEST(ControllerPorts, SummaryCountsTransmissionsAndJoints) {
+  auto w = world_with("arm.urdf", "arm");
+  EXPECT_EQ(w->plugin_info("arm", kPlugin).summary, "2 transmissions, 2 joints");
+}
+
 // The services of the kind: controller_manager's six under <ns>/controller_manager/ (ns "/" on the rover: global).
 TEST(ControllerPorts, ServicesAreControllerManagersUnderTheNamespace) {
   auto w = world_with("arm.urdf", "arm");
