@@ -79,6 +79,7 @@ struct CompoundAccess : btCompoundCollisionAlgorithm {
 bool settled(const btBroadphasePair& p) {
   if (!p.m_algorithm) return false;
   if (dynamic_cast<const btConvexPlaneCollisionAlgorithm*>(p.m_algorithm)) return true;
+  if (dynamic_cast<const SettledAlgorithm*>(p.m_algorithm)) return true;
   const auto* c = dynamic_cast<const btCompoundCollisionAlgorithm*>(p.m_algorithm);
   if (!c) return false;
   const auto* o0 = static_cast<const btCollisionObject*>(p.m_pProxy0->m_clientObject);
@@ -88,7 +89,9 @@ bool settled(const btBroadphasePair& p) {
   const auto* compound = static_cast<const btCompoundShape*>(s);
   if (CompoundAccess::revision(c) != compound->getUpdateRevision()) return false;
   for (int i = 0; i < compound->getNumChildShapes(); ++i)
-    if (!dynamic_cast<const btConvexPlaneCollisionAlgorithm*>(c->getChildAlgorithm(i))) return false;
+    if (!dynamic_cast<const btConvexPlaneCollisionAlgorithm*>(c->getChildAlgorithm(i)) &&
+        !dynamic_cast<const SettledAlgorithm*>(c->getChildAlgorithm(i)))
+      return false;
   return true;
 }
 

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <btBulletDynamicsCommon.h>
+#include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 #include <LinearMath/btQuaternion.h>
 
@@ -21,9 +22,16 @@
 namespace car_sim {
 namespace physics {
 
+// A collision algorithm of car's whose manifold is made with it and whose processCollision writes only that manifold
+// (BoxPlaneAlgorithm): the dispatcher treats its pairs as settled, as Bullet's convex-plane algorithm's.
+class SettledAlgorithm : public btActivatingCollisionAlgorithm {
+ public:
+  using btActivatingCollisionAlgorithm::btActivatingCollisionAlgorithm;
+};
+
 // Bullet's dispatcher, with the narrow phase of the pairs that can no longer allocate on the OpenMP threads: a
 // convex shape or a compound of convex shapes on a static plane whose collision algorithms (and so their
-// manifolds) exist. Every other pair is processed first, on the calling thread, in Bullet's order, so manifolds are
+// manifolds) exist, Bullet's convex-plane algorithm or a SettledAlgorithm. Every other pair is processed first, on the calling thread, in Bullet's order, so manifolds are
 // made and freed in Bullet's order; each pair writes only its own manifolds, so the contacts are Bullet's bit for
 // bit on any number of threads.
 class IslandDispatcher : public btCollisionDispatcher {

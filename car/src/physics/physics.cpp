@@ -126,11 +126,11 @@ namespace {
 // together (a sliding box then stands on one corner for a step and rocks); here each corner's point is replaced
 // every step (the manifold matches it to its cached point, keeping the warm start) and the manifold keeps at most
 // 4 (docs/COMPAT-physics.md "Contact points").
-class BoxPlaneAlgorithm : public btActivatingCollisionAlgorithm {
+class BoxPlaneAlgorithm : public SettledAlgorithm {
  public:
   BoxPlaneAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* a,
                     const btCollisionObjectWrapper* b, bool swapped)
-      : btActivatingCollisionAlgorithm(ci, a, b), swapped_(swapped) {
+      : SettledAlgorithm(ci, a, b), swapped_(swapped) {
     const btCollisionObjectWrapper* box = swapped ? b : a;
     const btCollisionObjectWrapper* plane = swapped ? a : b;
     if (m_dispatcher->needsCollision(box->getCollisionObject(), plane->getCollisionObject()))
