@@ -2,6 +2,7 @@
 """rostest: teleop_twist_keyboard in a pseudo-terminal: keys in, the expected Twist out, terminal restored."""
 import os
 import subprocess
+import tempfile
 import termios
 import time
 import unittest
@@ -24,8 +25,10 @@ class TeleopTest(unittest.TestCase):
     def start(self):
         self.master, self.slave = os.openpty()
         self.saved = termios.tcgetattr(self.slave)
+        # stderr to a file: a pipe nobody reads could fill and block the node's exit
+        self.err = tempfile.TemporaryFile()
         self.proc = subprocess.Popen([simtest.car_program('teleop_twist_keyboard.py'), '_key_timeout:=0'],
-                                     stdin=self.slave, stdout=self.slave, stderr=subprocess.PIPE)
+                                     stdin=self.slave, stdout=self.slave, stderr=self.err)
         # wait until it has put the terminal in raw mode and connected to us (a hang guard, not a speed limit: a
         # python node can take tens of seconds to start on a loaded machine)
         deadline = time.time() + 180
@@ -54,15 +57,26 @@ class TeleopTest(unittest.TestCase):
             time.sleep(0.02)
         return self.msgs[n:]
 
+    def stderr_tail(self):
+        self.err.seek(0)
+        return self.err.read()[-2000:].decode(errors='replace')
+
+    def wait_exit(self, why):
+        try:
+            self.proc.wait(timeout=120)
+        except subprocess.TimeoutExpired:
+            self.fail('teleop_twist_keyboard did not exit within 120 s of %s; its stderr:\n%s' % (why, self.stderr_tail()))
+
     def stop(self):
         os.write(self.master, b'\x03')
-        self.proc.wait(timeout=120)
+        self.wait_exit('Ctrl-C')
 
     def tearDown(self):
         if self.proc.poll() is None:
             self.proc.kill()
         os.close(self.master)
         os.close(self.slave)
+        self.err.close()
 
     def test_keys_publish_twists_and_the_terminal_is_restored(self):
         self.start()
@@ -87,7 +101,7 @@ class TeleopTest(unittest.TestCase):
         self.start()
         self.assertNotEqual(termios.tcgetattr(self.slave), self.saved)  # raw while running
         self.proc.terminate()
-        self.proc.wait(timeout=120)
+        self.wait_exit('SIGTERM')
         self.assertEqual(termios.tcgetattr(self.slave), self.saved)
 
 
