@@ -58,8 +58,8 @@ std::vector<double> crate_state(Scene& s) {
 
 TEST(Islands, RobotPassingWithinTheBoundingBoxLeavesARestingObjectAsleep) {
   Scene s;
-  // [m]: the probe's side 3 cm from the crate's, beyond Bullet's 2 cm contact threshold, while both bounding boxes
-  // (each grown by that threshold) overlap
+  // [m]: the probe's side 3 cm from the crate's: beyond the manifold's contact threshold (2 % of the probe's
+  // bounding radius, 3.5 mm, plus the margins), while both bounding boxes (each grown by Bullet's 2 cm) overlap
   const double y = 0.25 + 0.1 + 0.03;
   place(s, -1.0, y);
   run(s.p, 2500);
