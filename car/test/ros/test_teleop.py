@@ -78,13 +78,17 @@ class TeleopTest(unittest.TestCase):
         os.close(self.slave)
         self.err.close()
 
-    def test_keys_publish_twists_and_the_terminal_is_restored(self):
-        self.start()
-        # the teleop's publisher has added its connection to us (its own bus info says so): a key sent before that
-        # is published to nobody
+    def wait_connected(self):
+        # the teleop's publisher has added its connection to us (its own bus info says so)
         deadline = time.time() + 60
         while not self.teleop_sends_to_us() and time.time() < deadline:
             time.sleep(0.05)
+        self.assertTrue(self.teleop_sends_to_us(), "teleop's /cmd_vel publisher did not connect to us in 60 s")
+
+    def test_keys_publish_twists_and_the_terminal_is_restored(self):
+        self.start()
+        # a key sent before the connection is published to nobody
+        self.wait_connected()
         (fwd,) = self.send('i', 1)
         self.assertEqual((fwd.linear.x, fwd.angular.z), (0.5, 0.0))
         (left,) = self.send('j', 1)
@@ -100,6 +104,9 @@ class TeleopTest(unittest.TestCase):
     def test_sigterm_restores_the_terminal(self):
         self.start()
         self.assertNotEqual(termios.tcgetattr(self.slave), self.saved)  # raw while running
+        # with a subscriber connected (as the simulator always is): rospy's queued publisher thread then exists, and
+        # a node that leaves without rospy's shutdown waits for it forever
+        self.wait_connected()
         self.proc.terminate()
         self.wait_exit('SIGTERM')
         self.assertEqual(termios.tcgetattr(self.slave), self.saved)
