@@ -76,10 +76,14 @@ struct CompoundAccess : btCompoundCollisionAlgorithm {
 // A pair whose narrow phase makes and frees nothing: its algorithm exists and is Bullet's convex-on-plane one
 // (its manifold is made with it), or a compound's whose shape is unchanged and whose every child has a
 // convex-on-plane algorithm (a plane's bounding box covers every child, so Bullet never drops one).
+// An algorithm that writes only the manifold it was made with: Bullet's convex-plane one, or one of car's.
+bool writes_own_manifold(const btCollisionAlgorithm* a) {
+  return dynamic_cast<const btConvexPlaneCollisionAlgorithm*>(a) || dynamic_cast<const SettledAlgorithm*>(a);
+}
+
 bool settled(const btBroadphasePair& p) {
   if (!p.m_algorithm) return false;
-  if (dynamic_cast<const btConvexPlaneCollisionAlgorithm*>(p.m_algorithm)) return true;
-  if (dynamic_cast<const SettledAlgorithm*>(p.m_algorithm)) return true;
+  if (writes_own_manifold(p.m_algorithm)) return true;
   const auto* c = dynamic_cast<const btCompoundCollisionAlgorithm*>(p.m_algorithm);
   if (!c) return false;
   const auto* o0 = static_cast<const btCollisionObject*>(p.m_pProxy0->m_clientObject);
@@ -89,9 +93,7 @@ bool settled(const btBroadphasePair& p) {
   const auto* compound = static_cast<const btCompoundShape*>(s);
   if (CompoundAccess::revision(c) != compound->getUpdateRevision()) return false;
   for (int i = 0; i < compound->getNumChildShapes(); ++i)
-    if (!dynamic_cast<const btConvexPlaneCollisionAlgorithm*>(c->getChildAlgorithm(i)) &&
-        !dynamic_cast<const SettledAlgorithm*>(c->getChildAlgorithm(i)))
-      return false;
+    if (!writes_own_manifold(c->getChildAlgorithm(i))) return false;
   return true;
 }
 
