@@ -214,9 +214,37 @@ struct OutputPort {
   std::array<double, 3> orientation_covariance{};
   std::array<double, 3> angular_velocity_covariance{};
   std::array<double, 3> linear_acceleration_covariance{};
-  // At most one message per period [s] of sim time, a stamp earlier than the last one restarting the count
-  // (gazebo_ros_range's updateRate); 0 = every sample.
+  // At most one message per period [s] of sim time by PeriodGate's rule (gazebo_ros_range's updateRate); 0 = every
+  // sample.
   double min_period = 0.0;
+};
+
+// The rule of gazebo_ros's throttled publishers (gazebo_ros_range's updateRate, camera_utils' camera_info period;
+// docs/COMPAT-sensors.md "Throttled publishers"): a message at sim time t goes out when t - last >= period, `last`
+// starting at 0, so the first one waits a whole period after time 0. Time going back (a reset) restarts the count
+// from t. Whole nanoseconds, as Gazebo's common::Time.
+class PeriodGate {
+ public:
+  PeriodGate() = default;
+  // period [s]; <= 0: every message. Rounded to the nanosecond as common::Time(double): floor, then round.
+  explicit PeriodGate(double period) {
+    if (period > 0) {
+      const double whole = std::floor(period);
+      period_ns_ = static_cast<int64_t>(whole) * 1000000000 + std::llround((period - whole) * 1e9);
+    }
+  }
+  // Whether a message at sim time t [ns] goes out; if so it becomes the last.
+  bool due(int64_t t_ns) {
+    if (t_ns < last_ns_) last_ns_ = t_ns;
+    if (t_ns - last_ns_ < period_ns_) return false;
+    last_ns_ = t_ns;
+    return true;
+  }
+  int64_t period_ns() const { return period_ns_; }
+
+ private:
+  int64_t period_ns_ = 0;  // [ns]
+  int64_t last_ns_ = 0;    // [ns] sim time of the last message that went out
 };
 
 // ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----

@@ -207,6 +207,8 @@ std::string OutputPorts::setup(const car_sim::PluginInfo& plugin, const car_sim:
     }
     Port p;
     p.port = op;
+    // a throttled publisher's period [s] (range's updateRate, camera_info's)
+    p.gate = car_sim::PeriodGate(op.type == T::CameraInfo ? op.image.period : op.min_period);
     // GazeboRos::resolveTF: tf_prefix from the plug-in's namespace (docs/COMPAT-spawn.md rule 4)
     if (op.frames_as_written) {
       p.frame = op.frame;
@@ -392,12 +394,8 @@ void OutputPorts::publish(std::shared_ptr<const car_sim::Output> owned, NodeCont
       case T::Range: {
         const auto* s = out.range_sample();
         if (!s) break;
-        // at most one per min_period of sim time (publish when now - last >= min_period, as upstream); a stamp
-        // going backwards (a reset) restarts the count
-        if (p.port.min_period > 0 && stamp >= p.last && !p.last.isZero() &&
-            (stamp - p.last).toSec() < p.port.min_period - 1e-9)
-          break;
-        p.last = stamp;
+        // at most one per min_period of sim time (PeriodGate: upstream's rule)
+        if (!p.gate.due(static_cast<int64_t>(stamp.toNSec()))) break;
         publish(p, to_msg(*s), header, node);
         break;
       }

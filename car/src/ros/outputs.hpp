@@ -38,8 +38,8 @@ class OutputPorts {
     ros::Publisher pub;
     std::string prefix;              // tf_prefix of the port's namespace ("" = none)
     std::string frame, child_frame;  // as published
-    // the last message's stamp: a port with a min_period (range's throttle), and a CameraInfo port's period
-    ros::Time last;
+    // a port with a min_period (range's throttle) or a CameraInfo port's period: when its next message is due
+    car_sim::PeriodGate gate;
     // ---- cameras
     int image_of = -1;    // CameraInfo with_image: the index of its frame's Image port
   };

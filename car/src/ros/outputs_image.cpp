@@ -63,12 +63,9 @@ void OutputPorts::publish_image(Port& p, const std::shared_ptr<const car_sim::Ou
     }
     case T::CameraInfo: {
       if (p.image_of >= 0 && ports_[p.image_of].pub.getNumSubscribers() == 0) return;
-      // at most one per period of sim time [s]; time going back (a reset) sends one at once
-      const double period = p.port.image.period;
-      const bool due = period <= 0.0 || (stamp - p.last).toSec() >= period - 1e-9 || stamp < p.last;
-      if (!due) return;
+      // at most one per period of sim time (PeriodGate: upstream's rule, time going back restarting the count)
+      if (!p.gate.due(static_cast<int64_t>(stamp.toNSec()))) return;
       node.publish(p.pub, camera_info(s, p.port.image, p.frame, stamp));
-      p.last = stamp;
       return;
     }
     case T::DepthImage: {
