@@ -25,8 +25,8 @@ Two models (docs/BENCH.md "The peers"):
     deactivates resting world objects, the robot never sleeps); world objects with the SDF's inertia;
   - in a world where nothing moves but the robot (the bare plane), island discovery off (one tree: it changes
     nothing but the time);
-  - the diff drive's wheelAcceleration ramp at its updateRate, as car's plug-in ramps (validation only: the timed
-    run starts after the ramp has ended).
+  - the diff drive's wheelAcceleration ramp at its updateRate, as gazebo_ros_diff_drive (and car's plug-in) ramps
+    (validation only: the timed run starts after the ramp has ended).
 - `old`: the model this bench used before (default solver settings: 100 Newton iterations, the robot's geoms
   colliding with each other, no armature, kv 0.2, default contact softness), kept for the comparison.
 
@@ -72,7 +72,7 @@ class Peer:
         self.base = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, base)
         # [m] base_link's frame in the base body's frame (car lumps base_link into the root link's body)
         self.offset = np.asarray(base_link_offset, dtype=float)
-        # the plug-in's ramp: wheel surface speed [m/s] changes by at most accel / rate per update
+        # the plug-in's ramp (docs/COMPAT-plugins.md): the commanded wheel surface speeds [m/s], kept between updates
         self.rate = float(params.get('updateRate', 100.0))
         self.accel = float(params.get('wheelAcceleration', 0.0))
         self.surface = [0.0, 0.0]
@@ -83,14 +83,21 @@ class Peer:
         self.target = [v - w * self.sep / 2, v + w * self.sep / 2]
 
     def _update(self, ramp):
-        for i in range(2):
-            d = self.target[i] - self.surface[i]
-            if ramp and self.accel > 0:
-                lim = self.accel / self.rate
-                d = max(-lim, min(lim, d))
-            self.surface[i] += d
-        self.data.ctrl[self.left] = self.surface[0] / self.radius
-        self.data.ctrl[self.right] = self.surface[1] / self.radius
+        """gazebo_ros_diff_drive's update, as car's WheelRamp: with either wheel's current surface speed within
+        0.01 m/s of its target (or no ramp), both servos get their targets; otherwise each commanded speed moves by
+        target - current clamped to accel times upstream's seconds since its last update (the period and one
+        step)."""
+        current = [self.data.actuator_velocity[self.left] * self.radius,
+                   self.data.actuator_velocity[self.right] * self.radius]
+        if not ramp or self.accel == 0 or any(abs(t - c) < 0.01 for t, c in zip(self.target, current)):
+            out = list(self.target)
+        else:
+            lim = self.accel * (1.0 / self.rate + self.model.opt.timestep)
+            for i in range(2):
+                self.surface[i] += max(-lim, min(lim, self.target[i] - current[i]))
+            out = list(self.surface)
+        self.data.ctrl[self.left] = out[0] / self.radius
+        self.data.ctrl[self.right] = out[1] / self.radius
 
     def step(self, n, ramp=True):
         """n steps with the plug-in's control: new wheel speeds every 1/updateRate s (every 10 steps at 1 kHz),

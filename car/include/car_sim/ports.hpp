@@ -219,6 +219,16 @@ struct OutputPort {
   double min_period = 0.0;
 };
 
+// Gazebo's common::Time(double) in whole nanoseconds: floor for the seconds, the rest rounded to the nanosecond.
+inline int64_t common_time_ns(double seconds) {
+  const double whole = std::floor(seconds);
+  return static_cast<int64_t>(whole) * 1000000000 + std::llround((seconds - whole) * 1e9);
+}
+// common::Time::Double() of a time in nanoseconds (>= 0): sec + nsec * 1e-9, in that order.
+inline double common_time_double(int64_t ns) {
+  return static_cast<double>(ns / 1000000000) + static_cast<double>(ns % 1000000000) * 1e-9;
+}
+
 // The rule of gazebo_ros's throttled publishers (gazebo_ros_range's updateRate, camera_utils' camera_info period;
 // docs/COMPAT-sensors.md "Throttled publishers"): a message at sim time t goes out when t - last >= period, `last`
 // starting at 0, so the first one waits a whole period after time 0. Time going back (a reset) restarts the count
@@ -227,12 +237,7 @@ class PeriodGate {
  public:
   PeriodGate() = default;
   // period [s]; <= 0: every message. Rounded to the nanosecond as common::Time(double): floor, then round.
-  explicit PeriodGate(double period) {
-    if (period > 0) {
-      const double whole = std::floor(period);
-      period_ns_ = static_cast<int64_t>(whole) * 1000000000 + std::llround((period - whole) * 1e9);
-    }
-  }
+  explicit PeriodGate(double period) : period_ns_(period > 0 ? common_time_ns(period) : 0) {}
   // Whether a message at sim time t [ns] goes out; if so it becomes the last.
   bool due(int64_t t_ns) {
     if (t_ns < last_ns_) last_ns_ = t_ns;

@@ -1,8 +1,8 @@
 """car.gym: the Gymnasium environment over the core (box_house, the tutorial's car, a goal).
 
 The car starts at the origin facing +x; reset() steps 0.2 s with no command (two control periods, so the first
-observation has a lidar scan). A 0.5 m/s command ramps at wheelAcceleration 1.8 m/s^2 and loses 0.0694 m against
-v t. The default goal is (2, 0) with a 0.3 m tolerance.
+observation has a lidar scan). A 0.5 m/s command ramps at wheelAcceleration 1.8 m/s^2 over upstream's 0.011 s per 0.01 s update
+(1.98 m/s^2, docs/COMPAT-plugins.md) and loses v^2 / 2a = 0.0631 m against v t. The default goal is (2, 0) with a 0.3 m tolerance.
 """
 import hashlib
 import os
@@ -67,7 +67,7 @@ def test_scan_is_in_the_observation(env):
 
 
 def test_driving_at_the_goal_terminates_when_within_tolerance(env):
-    # x(t) = 0.5 (t - 0.2) - 0.0694 >= 2 - 0.3 first at a 0.1 s control tick t = 3.8 s
+    # x(t) = 0.5 (t - 0.2) - 0.0631 >= 2 - 0.3 from t = 3.73 s: first at a 0.1 s control tick t = 3.8 s
     _, (r, term, trunc, info) = drive(env, (0.5, 0.0), 100)
     assert term and not trunc
     assert info['time'] == pytest.approx(3.8, abs=1e-9)

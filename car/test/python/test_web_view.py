@@ -77,7 +77,7 @@ def test_replay_poses_the_robot_at_its_recorded_base_pose(tmp_path):
         root = next(iter(r.robots['mycar'][0]))
         f = r.web._frames[('mycar', root)]
         assert tuple(f.position) == pytest.approx((x, y, 0.0))
-        # the first run drives 0.5 m/s for 2 s (less the 0.07 m ramp; a turn after 1.5 s shortens x a little)
+        # the first run drives 0.5 m/s for 2 s (less the 0.06 m ramp; a turn after 1.5 s shortens x a little)
         assert 0.85 < x < 0.94
         assert tuple(f.wxyz) == pytest.approx((math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)), abs=1e-9)
     finally:

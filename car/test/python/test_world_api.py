@@ -30,7 +30,7 @@ def test_seed_command_drives_a_circle_of_radius_v_over_w(car_xml):
     w = _core.World(BOX_HOUSE)
     w.spawn_urdf(car_xml, 'mycar')
     w.set_cmd_vel('mycar', 1.0, 1.0)
-    w.step(1000)  # wheels at speed (ramp 1.1 m/s / 1.8 m/s^2 = 0.61 s)
+    w.step(1000)  # wheels at speed (ramp 1.1 m/s / 1.98 m/s^2 = 0.56 s)
     start = w.model_state('mycar')['position']
     points = []
     for _ in range(629):  # 2 pi s in 10 ms steps

@@ -20,7 +20,7 @@ class SeedLaunchTest(unittest.TestCase):
         call('/gazebo/pause_physics')
         odom.restart()
         command(0.2, 0.0)
-        # Past the ramp (0.2 / 1.8 = 0.11 s) it goes 0.2 m/s: between any two messages of [t0 + 1, t0 + 3] the
+        # Past the ramp (0.2 / 1.98 = 0.10 s) it goes 0.2 m/s: between any two messages of [t0 + 1, t0 + 3] the
         # distance over the time between their stamps (messages can be dropped on the way on a busy machine).
         t0 = sim_now()
         call('/gazebo/unpause_physics')

@@ -37,9 +37,19 @@ void wheel_speeds(double v, double w, double separation, double* left, double* r
   *right = v + w * separation / 2.0;
 }
 
-double rate_limit(double current, double target, double max_step) {
-  if (max_step <= 0.0) return target;
-  return current + std::clamp(target - current, -max_step, max_step);
+void WheelRamp::update(const double target[2], const double current[2], double accel, double since,
+                       double out[2]) {
+  if (accel == 0.0 || std::fabs(target[0] - current[0]) < 0.01 || std::fabs(target[1] - current[1]) < 0.01) {
+    out[0] = target[0];
+    out[1] = target[1];
+    return;
+  }
+  // [m/s] the most an update may add
+  const double step = accel * since;
+  for (int side = 0; side < 2; ++side) {
+    instr[side] += std::clamp(target[side] - current[side], -step, step);
+    out[side] = instr[side];
+  }
 }
 
 void check_wheel_length(ResolveContext& ctx, const char* key) {
@@ -90,26 +100,36 @@ class DiffDrive : public Plugin, public TwistDrive {
   }
   void command(const std::string&, const Command& value, CommandResult*) override { set_twist(std::get<Twist>(value)); }
 
+  // car: a reset starts the ramp afresh (upstream keeps its commanded speeds; docs/COMPAT-plugins.md).
   void reset() override {
     cmd_v_ = cmd_w_ = 0.0;
-    for (int side = 0; side < 2; ++side) instr_[side] = omega_[side] = q_ref_[side] = 0.0;
+    ramp_ = WheelRamp();
+    for (int side = 0; side < 2; ++side) omega_[side] = q_ref_[side] = 0.0;
     encoder_ = EncoderOdometry();
     update_due_ = false;
+    started_ = false;
   }
 
   // New wheel speed targets after an update, then the motors' anchor (see below).
   void pre_physics(const StepContext& ctx, RobotHandle& robot) override {
+    const int64_t step_ns = common_time_ns(ctx.dt);
+    // the spawn (or the reset): where upstream's last_update_time_ starts
+    if (!started_) {
+      started_ = true;
+      last_ns_ = static_cast<int64_t>(ctx.tick) * step_ns;
+    }
     if (update_due_) {
       update_due_ = false;
-      double target[2];
+      double target[2], current[2], motor[2];
       wheel_speeds(cmd_v_, cmd_w_, cfg_.wheel_separation, &target[0], &target[1]);
-      // [m/s] change allowed over one update period
-      const double period = cfg_.update_rate > 0 ? 1.0 / cfg_.update_rate : ctx.dt;
-      const double max_step = cfg_.wheel_acceleration * period;
-      for (int side = 0; side < 2; ++side) {
-        instr_[side] = rate_limit(instr_[side], target[side], max_step);
-        omega_[side] = instr_[side] / (cfg_.wheel_diameter / 2.0);
-      }
+      const double rad = cfg_.wheel_diameter / 2.0;
+      for (int side = 0; side < 2; ++side) current[side] = robot.joint_velocity(joint_[side]) * rad;
+      // [s] upstream's seconds_since_last_update: its call comes at the sim time after this state's step, and its
+      // last update time moves by common::Time(period) per update
+      const double since = common_time_double((static_cast<int64_t>(ctx.tick) + 1) * step_ns - last_ns_);
+      last_ns_ += cfg_.update_rate > 0 ? common_time_ns(1.0 / cfg_.update_rate) : 0;
+      ramp_.update(target, current, cfg_.wheel_acceleration, since, motor);
+      for (int side = 0; side < 2; ++side) omega_[side] = motor[side] / rad;
     }
     // The wheel motors are velocity motors (as Gazebo's) that also pull gently toward the angle their target
     // speed integrates to. An iterative solver leaves a small velocity error each step; without this anchor it
@@ -162,7 +182,9 @@ class DiffDrive : public Plugin, public TwistDrive {
   int joint_[2] = {-1, -1};
   int motor_[2] = {-1, -1};
   double cmd_v_ = 0.0, cmd_w_ = 0.0;   // [m/s], [rad/s] last command
-  double instr_[2] = {0.0, 0.0};       // [m/s] wheel surface speeds being commanded
+  WheelRamp ramp_;                     // upstream's wheel ramp
+  bool started_ = false;               // last_ns_ set (the first step after the spawn or a reset)
+  int64_t last_ns_ = 0;                // [ns] sim time of upstream's last_update_time_
   double omega_[2] = {0.0, 0.0};       // [rad/s] motor velocity targets
   double q_ref_[2] = {0.0, 0.0};       // [rad] integrated motor targets, anchored near the joint
   EncoderOdometry encoder_;

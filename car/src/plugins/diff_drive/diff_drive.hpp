@@ -36,8 +36,17 @@ struct DiffDriveConfig {
 // Wheel surface speeds [m/s] for a body twist: left = v - w sep/2, right = v + w sep/2.
 void wheel_speeds(double v, double w, double separation, double* left, double* right);
 
-// Moves current toward target by at most max_step (max_step <= 0: jump to target).
-double rate_limit(double current, double target, double max_step);
+// gazebo_ros_diff_drive's wheel ramp (UpdateChild, noetic-devel; docs/COMPAT-plugins.md "the update and the wheel
+// ramp"), left and right [m/s] of wheel surface speed. Each update: when the acceleration is 0 or either wheel's
+// current speed is within 0.01 m/s of its target, both motors get their targets and the commanded speeds stay as
+// they were; otherwise each commanded speed moves by the clamp of (target - current) to +-accel * since, and the
+// motors get those. The commanded speeds start at 0.
+struct WheelRamp {
+  double instr[2] = {0.0, 0.0};  // [m/s] commanded speeds, kept between updates (wheel_speed_instr_)
+
+  // target, current [m/s]; accel [m/s^2]; since [s] seconds_since_last_update. Writes the motors' speeds to out.
+  void update(const double target[2], const double current[2], double accel, double since, double out[2]);
+};
 
 // The drives' rule for a wheel length key [m] (separation, diameter): 0 is refused (the drive divides by it); a
 // negative one is what Gazebo 11 loads too (the wheels turn the other way), so a warning (docs/COMPAT-validation.md).

@@ -14,11 +14,71 @@ TEST(DiffDrive, WheelSpeedsForTheSeedCommand) {
   EXPECT_DOUBLE_EQ(r, 1.1);
 }
 
-TEST(DiffDrive, RateLimitStepsTowardTarget) {
-  EXPECT_DOUBLE_EQ(rate_limit(0.0, 1.0, 0.018), 0.018);  // 1.8 m/s^2 over 10 ms
-  EXPECT_DOUBLE_EQ(rate_limit(0.99, 1.0, 0.018), 1.0);
-  EXPECT_DOUBLE_EQ(rate_limit(0.0, -1.0, 0.018), -0.018);
-  EXPECT_DOUBLE_EQ(rate_limit(0.3, -1.0, 0.0), -1.0);  // 0 = unlimited
+// The seed's drive (wheelAcceleration 1.8 m/s^2, updateRate 100 Hz) at 1 ms: upstream's seconds_since_last_update
+// is 0.011 s (the period and one step), so an update adds at most 1.8 * 0.011 = 0.0198 m/s.
+TEST(DiffDriveRamp, FromRestEachWheelGainsAccelTimesTheSecondsSinceTheLastUpdate) {
+  WheelRamp r;
+  const double target[2] = {0.9, 1.1}, current[2] = {0.0, 0.0};
+  double out[2];
+  r.update(target, current, 1.8, 0.011, out);
+  EXPECT_DOUBLE_EQ(out[0], 1.8 * 0.011);
+  EXPECT_DOUBLE_EQ(out[1], 1.8 * 0.011);
+}
+
+// One wheel within 0.01 m/s of its target ends the ramp of both (Noetic's ||): the right wheel jumps from 0.95 to
+// 1.1, and the commanded speeds stay where the ramp left them.
+TEST(DiffDriveRamp, OneWheelNearItsTargetSetsBothAtOnce) {
+  WheelRamp r;
+  r.instr[0] = 0.8915;
+  r.instr[1] = 0.95;
+  const double target[2] = {0.9, 1.1}, current[2] = {0.8915, 0.95};
+  double out[2];
+  r.update(target, current, 1.8, 0.011, out);
+  EXPECT_EQ(out[0], 0.9);
+  EXPECT_EQ(out[1], 1.1);
+  EXPECT_EQ(r.instr[0], 0.8915);
+  EXPECT_EQ(r.instr[1], 0.95);
+}
+
+// The step follows the wheel's actual speed, not the commanded one: a blocked wheel (current 0) winds the command
+// up by 0.0198 m/s every update, 3 updates 0.0594 m/s, as upstream.
+TEST(DiffDriveRamp, ABlockedWheelWindsTheCommandUp) {
+  WheelRamp r;
+  const double target[2] = {0.5, 0.5}, current[2] = {0.0, 0.0};
+  double out[2];
+  for (int i = 0; i < 3; ++i) r.update(target, current, 1.8, 0.011, out);
+  EXPECT_NEAR(out[0], 3 * 0.0198, 1e-15);
+  EXPECT_NEAR(out[1], 3 * 0.0198, 1e-15);
+}
+
+// Slowing down steps down by the same amount; a difference smaller than a step is taken whole.
+TEST(DiffDriveRamp, StepsDownAndTakesASmallDifferenceWhole) {
+  WheelRamp r;
+  r.instr[0] = r.instr[1] = 0.5;
+  const double target[2] = {0.0, 0.49}, current[2] = {0.5, 0.5};
+  double out[2];
+  r.update(target, current, 1.8, 0.011, out);
+  EXPECT_DOUBLE_EQ(out[0], 0.5 - 0.0198);
+  // |0.49 - 0.5| = 0.01 is not below 0.01: still the ramp, and the difference (-0.01) is within the step
+  EXPECT_DOUBLE_EQ(out[1], 0.49);
+}
+
+// wheelAcceleration 0: the targets at once.
+TEST(DiffDriveRamp, ZeroAccelerationSetsTheTargets) {
+  WheelRamp r;
+  const double target[2] = {-1.0, 1.0}, current[2] = {0.3, 0.3};
+  double out[2];
+  r.update(target, current, 0.0, 0.011, out);
+  EXPECT_EQ(out[0], -1.0);
+  EXPECT_EQ(out[1], 1.0);
+}
+
+// common::Time's arithmetic: 11 ms is 0.011 as Double(), and 10 ms equals the double 1/100 (so `> period` is false).
+TEST(DiffDriveRamp, CommonTimeDoubleOfTheSeedsPeriod) {
+  EXPECT_EQ(common_time_double(11000000), 11000000 * 1e-9);
+  EXPECT_EQ(common_time_double(10000000), 1.0 / 100.0);
+  EXPECT_EQ(common_time_ns(1.0 / 100.0), 10000000);
+  EXPECT_EQ(common_time_double(1500000000), 1.5);
 }
 
 TEST(DiffDrive, EncoderStraightAndTurn) {

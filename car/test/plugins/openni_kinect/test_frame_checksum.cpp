@@ -5,7 +5,9 @@
 // bytes of image, depth, points and point_rgb, frame after frame (NaN bits included). Compiler flags that change
 // float rounding (e.g. FMA contraction with -march) change them too: then retake them from the unchanged code.
 // A physics change that moves what the camera sees changes them as well (mono8, issue 29: the boxes level out
-// on all their corners and rest 0.4 um elsewhere): retake those from the changed code and say why.
+// on all their corners and rest 0.4 um elsewhere): retake those from the changed code and say why. All five were
+// retaken for the diff drive's ramp as upstream's (docs/COMPAT-plugins.md: 1.98 m/s^2 effective, and one wheel near
+// its target ends the ramp of both), which moves the car along its curve; one thread and two still agree.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -89,15 +91,15 @@ void check(const Case& c) {
 }  // namespace
 
 TEST(KinectFrames, Rgb8FramesKeepTheirChecksum) {
-  check({"rgb8 at the origin", kinect("R8G8B8"), 0, 0, 0, 0, 0x2b5f01abe65ccf1eull});
-  check({"rgb8 facing the cylinders", kinect("R8G8B8"), -1.5, -1.0, 2.6, 0, 0xb4b83fe0aaf9d68dull});
+  check({"rgb8 at the origin", kinect("R8G8B8"), 0, 0, 0, 0, 0x79460db400fe8915ull});
+  check({"rgb8 facing the cylinders", kinect("R8G8B8"), -1.5, -1.0, 2.6, 0, 0xafee91da49ef2544ull});
 }
 
 TEST(KinectFrames, Bgr8WithSeededNoiseKeepsItsChecksum) {
-  check({"bgr8 noisy", kinect("B8G8R8", 0.01, 0.07), 0.5, 1.0, -1.2, 7, 0xdba9a2a546c4de88ull});
+  check({"bgr8 noisy", kinect("B8G8R8", 0.01, 0.07), 0.5, 1.0, -1.2, 7, 0x15bdc8df51b2e932ull});
 }
 
 TEST(KinectFrames, Mono8KeepsItsChecksum) {
-  check({"mono8", kinect("L8"), 1.0, -0.5, 0.7, 0, 0x057407819e6242b2ull});
-  check({"mono8 noisy", kinect("L8", 0.0, 0.05), 1.0, -0.5, 0.7, 3, 0x58ebb3077da8fb24ull});
+  check({"mono8", kinect("L8"), 1.0, -0.5, 0.7, 0, 0x8f5cdadfb8229173ull});
+  check({"mono8 noisy", kinect("L8", 0.0, 0.05), 1.0, -0.5, 0.7, 3, 0xe20624fe98b770e8ull});
 }
