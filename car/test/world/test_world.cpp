@@ -330,8 +330,8 @@ TEST(WorldErrors, MalformedSdfNamesTheFile) {
 namespace {
 
 // Five seed cars in five box_house worlds (noise seeds 0..4), lidar on, driving different arcs; car 3 heads into
-// Wall_2 (inner face x = 4.374) at 1.5 m/s: ramping at 1.8 m/s^2 it loses 0.625 m, so the base (radius 0.1 m)
-// touches at x = 4.274 after 2.774 m, t = 2.26 s. Everything a step writes: base pose and twist, joint states, every scan.
+// Wall_2 (inner face x = 4.374) at 1.5 m/s: ramping at 1.98 m/s^2 (1.8 over 0.011 s per 0.01 s update) it loses
+// 0.568 m, so the base (radius 0.1 m) touches at x = 4.274 after 2.774 m, t = 2.23 s. Everything a step writes: base pose and twist, joint states, every scan.
 std::vector<std::unique_ptr<World>> five_worlds() {
   std::vector<std::unique_ptr<World>> ws;
   for (int i = 0; i < 5; ++i) {

@@ -55,7 +55,7 @@ TEST(JointStatePublisher, ListsExactlyItsJointsAtItsRate) {
 
 TEST(JointStatePublisher, ReportsTheJointState) {
   // the message equals the world's joint state at the same tick; the diff drive has the wheel up to
-  // 0.5 m/s / 0.0325 m = 15.4 rad/s after 0.28 s of its 1.8 m/s^2 ramp
+  // 0.5 m/s / 0.0325 m = 15.4 rad/s after 0.25 s of its ramp (1.8 m/s^2 over 0.011 s per 0.01 s update)
   auto w = test_support::world_with_car(false);
   w->attach_plugin("mycar", jsp("left2link", "0"));
   w->set_plugin_active("mycar", "jsp", true);
