@@ -83,7 +83,8 @@ constexpr ParamType F = ParamType::Flag;
 
 class DiffDrive : public Plugin, public TwistDrive {
  public:
-  DiffDrive(const PluginConfig& c, const std::string& robot) : cfg_(DiffDriveConfig::from(c, robot)) {}
+  DiffDrive(const PluginConfig& c, const std::string& robot)
+      : cfg_(DiffDriveConfig::from(c, robot)), clock_(cfg_.update_rate) {}
 
   double update_rate() const override { return cfg_.update_rate; }
   std::vector<std::string> driven_joints() const override { return {cfg_.left_joint, cfg_.right_joint}; }
@@ -107,28 +108,19 @@ class DiffDrive : public Plugin, public TwistDrive {
     for (int side = 0; side < 2; ++side) omega_[side] = q_ref_[side] = 0.0;
     encoder_ = EncoderOdometry();
     update_due_ = false;
-    started_ = false;
+    clock_.restart();
   }
 
   // New wheel speed targets after an update, then the motors' anchor (see below).
   void pre_physics(const StepContext& ctx, RobotHandle& robot) override {
-    const int64_t step_ns = common_time_ns(ctx.dt);
-    // the spawn (or the reset): where upstream's last_update_time_ starts
-    if (!started_) {
-      started_ = true;
-      last_ns_ = static_cast<int64_t>(ctx.tick) * step_ns;
-    }
+    clock_.begin(ctx.tick, ctx.dt);
     if (update_due_) {
       update_due_ = false;
       double target[2], current[2], motor[2];
       wheel_speeds(cmd_v_, cmd_w_, cfg_.wheel_separation, &target[0], &target[1]);
       const double rad = cfg_.wheel_diameter / 2.0;
       for (int side = 0; side < 2; ++side) current[side] = robot.joint_velocity(joint_[side]) * rad;
-      // [s] upstream's seconds_since_last_update: its call comes at the sim time after this state's step, and its
-      // last update time moves by common::Time(period) per update
-      const double since = common_time_double((static_cast<int64_t>(ctx.tick) + 1) * step_ns - last_ns_);
-      last_ns_ += cfg_.update_rate > 0 ? common_time_ns(1.0 / cfg_.update_rate) : 0;
-      ramp_.update(target, current, cfg_.wheel_acceleration, since, motor);
+      ramp_.update(target, current, cfg_.wheel_acceleration, clock_.since(ctx.tick, ctx.dt), motor);
       for (int side = 0; side < 2; ++side) omega_[side] = motor[side] / rad;
     }
     // The wheel motors are velocity motors (as Gazebo's) that also pull gently toward the angle their target
@@ -182,9 +174,8 @@ class DiffDrive : public Plugin, public TwistDrive {
   int joint_[2] = {-1, -1};
   int motor_[2] = {-1, -1};
   double cmd_v_ = 0.0, cmd_w_ = 0.0;   // [m/s], [rad/s] last command
+  UpdateClock clock_;                  // upstream's seconds_since_last_update
   WheelRamp ramp_;                     // upstream's wheel ramp
-  bool started_ = false;               // last_ns_ set (the first step after the spawn or a reset)
-  int64_t last_ns_ = 0;                // [ns] sim time of upstream's last_update_time_
   double omega_[2] = {0.0, 0.0};       // [rad/s] motor velocity targets
   double q_ref_[2] = {0.0, 0.0};       // [rad] integrated motor targets, anchored near the joint
   EncoderOdometry encoder_;

@@ -37,7 +37,8 @@ class Tricycle : public Plugin, public TwistDrive {
         torque_(c.number("wheelTorque")), accel_(c.number("wheelAcceleration")),
         decel_(c.param("wheelDeceleration").from_default ? accel_ : c.number("wheelDeceleration")),
         tolerance_(c.number("wheelSpeedTolerance")), steer_speed_(c.number("steeringSpeed")),
-        steer_tolerance_(c.number("steeringAngleTolerance")), encoder_(c.text("odometrySource") == "encoder") {}
+        steer_tolerance_(c.number("steeringAngleTolerance")), encoder_(c.text("odometrySource") == "encoder"),
+        clock_(rate_) {}
 
   double update_rate() const override { return rate_; }
   std::vector<std::string> driven_joints() const override { return {steer_name_, wheel_name_}; }
@@ -61,15 +62,15 @@ class Tricycle : public Plugin, public TwistDrive {
     speed_ = angle_ = wheel_target_ = steer_rate_ = 0.0;
     odom_ = EncoderOdometry();
     update_due_ = false;
-    last_update_tick_ = 0;
+    clock_.restart();
   }
 
   void pre_physics(const StepContext& ctx, RobotHandle& robot) override {
+    clock_.begin(ctx.tick, ctx.dt);
     if (update_due_) {
       update_due_ = false;
-      // [s] since the last actuator update
-      const double dt = static_cast<double>(ctx.tick - last_update_tick_) * ctx.dt;
-      last_update_tick_ = ctx.tick;
+      // [s] upstream's seconds_since_last_update (motorController's dt)
+      const double dt = clock_.since(ctx.tick, ctx.dt);
       wheel_target_ = tricycle_wheel_speed(robot.joint_velocity(wheel_), speed_ / wheel_radius_, accel_, decel_,
                                            tolerance_, dt);
       const double target = std::clamp(angle_, -M_PI / 2, M_PI / 2);
@@ -127,7 +128,7 @@ class Tricycle : public Plugin, public TwistDrive {
   double steer_rate_ = 0.0;           // [rad/s]
   EncoderOdometry odom_;
   bool update_due_ = false;
-  uint64_t last_update_tick_ = 0;
+  UpdateClock clock_;  // upstream's seconds_since_last_update
 };
 
 void finish(ResolveContext& ctx) {

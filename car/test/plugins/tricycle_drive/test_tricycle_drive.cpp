@@ -85,3 +85,29 @@ TEST(Tricycle, EncoderOdometryTurnsTheRightWay) {
   EXPECT_GT(truth, 0.5);
   EXPECT_NEAR(yaw_of(o.pose), truth, 0.05 * truth);
 }
+
+// Spawned 2 s into the run, 2 m above the ground (it falls for the 0.08 s of the test, so the wheel spins freely
+// and its motor reaches each target), wheelAcceleration 20 rad/s^2 (speeding up uses wheelDeceleration, by default
+// the same): upstream's first update comes 0.011 s after the load and each update adds 20 * 0.011 = 0.22 rad/s to
+// the wheel's current speed (docs/COMPAT-plugins.md), toward 0.5 m/s / 0.05 m = 10 rad/s. So after update k the
+// wheel turns at 0.22 k rad/s: 1.76 after 8 (the period alone would give 0.20 k; timing from tick 0 would make the
+// first step 20 * 2.01 s, the whole 10 rad/s at once).
+TEST(Tricycle, RampsByAccelTimesUpstreamsSecondsSinceTheLoad) {
+  World w(empty_world());
+  w.step(2000);
+  Eigen::Isometry3d high = at(0, 0, 0);
+  high.translation().z() = 2.0;
+  w.spawn(load_urdf_string(tricycle("<wheelAcceleration>20</wheelAcceleration>"), "tri.urdf"), "tri", high);
+  Twist t;
+  t.linear.x() = 0.5;
+  w.set_cmd_vel("tri", t);
+  // [rad/s] the front wheel's speed after each of 9 periods of 10 steps (update k acts from period k + 1 on)
+  std::vector<double> speed;
+  for (int k = 1; k <= 9; ++k) {
+    w.step(10);
+    for (const auto& j : w.joint_states("tri"))
+      if (j.name == "front_wheel_joint") speed.push_back(j.velocity);
+  }
+  ASSERT_EQ(speed.size(), 9u);
+  for (int k = 1; k <= 8; ++k) EXPECT_NEAR(speed[k], 0.22 * k, 1e-3) << "after update " << k;
+}
