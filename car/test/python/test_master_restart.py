@@ -15,6 +15,7 @@ import yaml
 
 import rosgraph
 import roslib.packages as roslib_packages
+from car.testing.sim import shutdown_signal
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
 WORLD = os.path.join(ROOT, 'worlds', 'box_house.world')
@@ -64,7 +65,7 @@ class Graph:
 
     def stop_core(self):
         # roscore, rosmaster and rosout share the session started above
-        os.killpg(self.core.pid, signal.SIGINT)
+        os.killpg(self.core.pid, shutdown_signal())
         try:
             self.core.wait(timeout=30)
         except subprocess.TimeoutExpired:
@@ -91,7 +92,7 @@ class Graph:
     def close(self):
         for p in self.procs:
             if p.poll() is None:
-                p.send_signal(signal.SIGINT)
+                p.send_signal(shutdown_signal())
                 try:
                     p.wait(timeout=20)
                 except subprocess.TimeoutExpired:

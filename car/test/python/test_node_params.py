@@ -2,13 +2,13 @@
 reason, ~lockstep_timeout NaN or inf falls back to 5 s with a warning. Each sim_node runs against its own rosmaster
 on a free port. Needs the workspace (sim_node) sourced."""
 import os
-import signal
 import socket
 import subprocess
 import time
 
 import pytest
 import roslib.packages as roslib_packages
+from car.testing.sim import shutdown_signal
 
 BOUND = 120.0  # [s] wall: a bound against hanging, not a speed requirement
 
@@ -28,7 +28,8 @@ def master(tmp_path):
     core = subprocess.Popen(['rosmaster', '--core', '-p', str(port)], env=env, start_new_session=True,
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     yield env
-    os.killpg(core.pid, signal.SIGINT)
+    # SIGINT, or SIGTERM where this run ignores SIGINT (the master would inherit that)
+    os.killpg(core.pid, shutdown_signal())
     core.wait(timeout=30)
 
 
@@ -64,7 +65,7 @@ def test_non_finite_lockstep_timeout_warns_and_uses_5_s(master, tmp_path, value)
                 value, BOUND, (tmp_path / 'node.log').read_text())
             time.sleep(0.1)
     finally:
-        node.send_signal(signal.SIGINT)
+        node.send_signal(shutdown_signal())
         try:
             node.wait(timeout=30)
         except subprocess.TimeoutExpired:

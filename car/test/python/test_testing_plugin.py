@@ -4,6 +4,7 @@ Needs the workspace (sim_node) sourced, as the suite's other ROS tests do. Each 
 free port, so these run beside anything else.
 """
 import os
+import signal
 import subprocess
 import sys
 
@@ -160,3 +161,24 @@ def test_xdist_workers_share_the_controllers_random_seed(tmp_path):
     # --car-seed random is drawn once, by the controller: the failure report's replay command holds for every worker
     seen = _two_workers(tmp_path, '--car-seed', 'random')
     assert seen['gw0'][3] == seen['gw1'][3], seen
+
+
+def test_processes_are_stopped_with_sigint_where_it_reaches_them():
+    from car.testing.sim import shutdown_signal
+    old = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        assert shutdown_signal() == signal.SIGINT
+    finally:
+        signal.signal(signal.SIGINT, old)
+
+
+def test_processes_are_stopped_with_sigterm_where_sigint_is_ignored():
+    # a background job of a script (`pytest &`) starts with SIGINT ignored, and the master and launches the plug-in
+    # starts would inherit that: they are asked to stop with SIGTERM instead (a suite run that way once waited 30 s
+    # per master)
+    from car.testing.sim import shutdown_signal
+    old = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        assert shutdown_signal() == signal.SIGTERM
+    finally:
+        signal.signal(signal.SIGINT, old)

@@ -97,12 +97,19 @@ def ensure_node():
     rospy.init_node('car_testing', anonymous=True, disable_signals=True)
 
 
+def shutdown_signal():
+    """The signal that asks a process this one started to shut down: SIGINT, as Ctrl-C (roslaunch and ROS nodes shut
+    down cleanly); SIGTERM when this process ignores SIGINT. A background job of a non-interactive shell (`cmd &` in a
+    script) starts with SIGINT ignored, and its children inherit that, so SIGINT would not reach them."""
+    return signal.SIGTERM if signal.getsignal(signal.SIGINT) == signal.SIG_IGN else signal.SIGINT
+
+
 def _stop(proc, grace_s=10.0):
-    """Ends a process group we started: SIGINT (roslaunch and ROS nodes shut down cleanly), then SIGKILL."""
+    """Ends a process group we started: shutdown_signal() (a clean shutdown), then SIGKILL."""
     if proc is None or proc.poll() is not None:
         return
     try:
-        os.killpg(proc.pid, signal.SIGINT)
+        os.killpg(proc.pid, shutdown_signal())
         proc.wait(grace_s)
     except (subprocess.TimeoutExpired, ProcessLookupError):
         try:

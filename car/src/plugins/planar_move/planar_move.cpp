@@ -1,6 +1,7 @@
 // libgazebo_ros_planar_move.so (gazebo_plugins, Noetic): every step the base's velocity is set from the last
 // command — linear (x cos yaw − y sin yaw, y cos yaw + x sin yaw, 0) world frame, angular (0, 0, rot) — and
-// odometry (the true pose, finite-difference twist) goes out at odometryRate. Per docs/COMPAT-plugins.md.
+// odometry (the true pose, finite-difference twist) goes out when more than 1/odometryRate has passed since the
+// last (upstream's clock: every 51 ms at 20 Hz and 1 ms). Per docs/COMPAT-plugins.md.
 #include "planar_move.hpp"
 
 #include <cmath>
@@ -24,8 +25,8 @@ class PlanarMove : public Plugin, public TwistDrive {
   explicit PlanarMove(const PluginConfig& c)
       : rate_(c.number("odometryRate")), timeout_(c.number("cmdTimeout")) {}
 
-  // upstream publishes only when odometryRate > 0; car's schedule then runs at that rate
-  double update_rate() const override { return rate_; }
+  // every step: the plug-in keeps upstream's odometry clock itself (post_physics)
+  double update_rate() const override { return 0.0; }
 
   void set_twist(const Twist& cmd) override {
     vx_ = cmd.linear.x();
@@ -39,7 +40,6 @@ class PlanarMove : public Plugin, public TwistDrive {
     vx_ = vy_ = rot_ = 0.0;
     cmd_fresh_ = false;
     last_cmd_tick_ = 0;
-    last_pub_tick_ = 0;
     have_last_ = false;
   }
 
@@ -52,20 +52,25 @@ class PlanarMove : public Plugin, public TwistDrive {
     if (timeout_ >= 0 && static_cast<double>(ctx.tick - last_cmd_tick_) * ctx.dt > timeout_) vx_ = vy_ = rot_ = 0.0;
     const ModelState s = robot.root_state();
     if (!have_last_) {
-      // odometry's finite differences start from here
+      // the load (or, car, a reset): odometry's clock and finite differences start from here
       last_pose_ = s.pose;
-      last_pub_tick_ = ctx.tick;
+      last_ns_ = static_cast<int64_t>(ctx.tick) * common_time_ns(ctx.dt);
       have_last_ = true;
     }
     const Eigen::Vector2d v = planar_world_velocity(vx_, vy_, yaw_of(s.pose));
     robot.set_root_velocity(Eigen::Vector3d(v.x(), v.y(), 0.0), Eigen::Vector3d(0.0, 0.0, rot_));
   }
 
+  // Upstream's UpdateChild at the sim time after this step: odometry when (t - last).Double() > 1 / odometryRate
+  // (strictly), then last = t, so a period of whole steps goes out one step late each time (docs/COMPAT-plugins.md).
   void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) override {
     if (rate_ <= 0) return;
+    const int64_t t_ns = (static_cast<int64_t>(ctx.tick) + 1) * common_time_ns(ctx.dt);
+    // [s] upstream's seconds_since_last_update, also the divisor of its finite differences
+    const double period = common_time_double(t_ns - last_ns_);
+    if (!(period > 1.0 / rate_)) return;
+    last_ns_ = t_ns;
     const Eigen::Isometry3d pose = robot.root_state().pose;
-    // [s] since the last publication
-    const double period = static_cast<double>(ctx.tick - last_pub_tick_) * ctx.dt;
     auto o = std::make_unique<OdometryOut>();
     o->pose = pose;
     const Eigen::Vector3d d = (pose.translation() - last_pose_.translation()) / period;
@@ -79,14 +84,14 @@ class PlanarMove : public Plugin, public TwistDrive {
     o->angular = Eigen::Vector3d(0.0, 0.0, wz);
     out->push_back(std::move(o));
     last_pose_ = pose;
-    last_pub_tick_ = ctx.tick;
   }
 
  private:
   double rate_, timeout_;
   double vx_ = 0.0, vy_ = 0.0, rot_ = 0.0;  // [m/s], [m/s], [rad/s] body frame, last command
   bool cmd_fresh_ = false;                  // a command arrived since the last step
-  uint64_t last_cmd_tick_ = 0, last_pub_tick_ = 0;
+  uint64_t last_cmd_tick_ = 0;
+  int64_t last_ns_ = 0;  // [ns] upstream's last_odom_publish_time_
   Eigen::Isometry3d last_pose_ = Eigen::Isometry3d::Identity();  // root pose at the last publication
   bool have_last_ = false;
 };

@@ -64,11 +64,23 @@ TEST(PlanarMove, TwistGivesTheArcAfterT) {
   EXPECT_NEAR(s.pose.translation().z(), 0.0, 1e-3);  // z velocity held at 0: neither sinks nor jumps
 }
 
-TEST(PlanarMove, OdometryAtItsRateWithTheBodyTwist) {
-  // 20 Hz for 2 s: 40 messages; the finite-difference twist over 50 ms of a body moving at (0.5, 0.2) m/s
-  // while turning at 0.5 rad/s: the chord of an arc, |v| sin(w P / 2) / (w P / 2) = |v| (1 - 2.6e-5), so
-  // within 1e-3 of the command in the base frame (rotated by the end-of-period yaw: a lag of w P / 2 =
-  // 12.5 mrad turns (0.5, 0.2) by that angle: x 0.5 + 0.0025, y 0.2 - 0.00625).
+// Upstream's clock (docs/COMPAT-plugins.md): odometry when more than 1/20 s has passed since the last, counted at
+// the sim time after the step, then last = that time. 50 ms of whole steps is not more than 0.05 (as a double it is
+// equal), so the first goes out on the state after step 50 (t = 51 ms since the load at 0) and then every 51 steps:
+// ticks 50, 101, 152, ..., 50 + 38 * 51 = 1988 in 2 s: 39 messages (19.6 Hz).
+TEST(PlanarMove, OdometryEveryPeriodAndOneStepAsUpstream) {
+  auto w = world_with("<odometryRate>20</odometryRate>");
+  w->step(2000);
+  const OutputQueue out = w->take_outputs();
+  ASSERT_EQ(out.size(), 39u);
+  for (size_t i = 0; i < out.size(); ++i) EXPECT_EQ(out[i]->tick, 50u + 51u * i) << i;
+}
+
+TEST(PlanarMove, OdometryTwistIsTheFiniteDifferenceOverItsPeriod) {
+  // A body moving at (0.5, 0.2) m/s while turning at 0.5 rad/s, seen over upstream's 51 ms (the test above): the
+  // chord of an arc, |v| sin(w P / 2) / (w P / 2) = |v| (1 - 2.7e-5), so within 1e-3 of the command in the base
+  // frame, rotated by the end-of-period yaw: a lag of w P / 2 = 12.75 mrad turns (0.5, 0.2) by that angle (x 0.5 +
+  // 0.2 * 0.01275, y 0.2 - 0.5 * 0.01275). The last message (tick 1988) has yaw 0.5 * 1.988.
   auto w = world_with("<odometryRate>20</odometryRate>");
   Twist t;
   t.linear = Eigen::Vector3d(0.5, 0.2, 0.0);
@@ -76,13 +88,13 @@ TEST(PlanarMove, OdometryAtItsRateWithTheBodyTwist) {
   w->set_cmd_vel("box", t);
   w->step(2000);
   const OutputQueue out = w->take_outputs();
-  ASSERT_EQ(out.size(), 40u);
+  ASSERT_EQ(out.size(), 39u);
   const auto& o = dynamic_cast<const OdometryOut&>(*out.back());
-  EXPECT_EQ(o.tick, 2000u);
-  EXPECT_NEAR(o.linear.x(), 0.5 + 0.5 * 0.2 * 0.025, 1e-3);
-  EXPECT_NEAR(o.linear.y(), 0.2 - 0.5 * 0.5 * 0.025, 1e-3);
+  EXPECT_EQ(o.tick, 1988u);
+  EXPECT_NEAR(o.linear.x(), 0.5 + 0.2 * 0.01275, 1e-3);
+  EXPECT_NEAR(o.linear.y(), 0.2 - 0.5 * 0.01275, 1e-3);
   EXPECT_NEAR(o.angular.z(), 0.5, 1e-3);
-  EXPECT_NEAR(yaw_of(o.pose), 1.0, 1e-3);
+  EXPECT_NEAR(yaw_of(o.pose), 0.5 * 1.988, 1e-3);
 }
 
 TEST(PlanarMove, CmdTimeoutStopsTheBase) {
