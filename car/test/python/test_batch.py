@@ -1,8 +1,8 @@
 """car batch: scenario files, one run's numbers, determinism, failures, resume, Parquet, Ray and the plots.
 
-Fixtures in test/data/batch. The seed car's diff drive ramps the wheel speed at wheelAcceleration = 1.8 m/s^2 over upstream's 0.011 s per 0.01 s
-update (a = 1.98 m/s^2, docs/COMPAT-plugins.md), so a 0.5 m/s command from rest loses v^2 / (2 a) = 0.25 / 3.96 =
-0.0631 m against v t.
+Fixtures in test/data/batch. The seed car's diff drive ramps the wheel speed at wheelAcceleration = 1.8 m/s^2
+over upstream's 0.011 s per 0.01 s update (a = 1.98 m/s^2, docs/COMPAT-plugins.md), so a 0.5 m/s command from rest
+loses v^2 / (2 a) = 0.25 / 3.96 = 0.0631 m against v t.
 """
 import json
 import math

@@ -1,8 +1,9 @@
 """car.gym: the Gymnasium environment over the core (box_house, the tutorial's car, a goal).
 
 The car starts at the origin facing +x; reset() steps 0.2 s with no command (two control periods, so the first
-observation has a lidar scan). A 0.5 m/s command ramps at wheelAcceleration 1.8 m/s^2 over upstream's 0.011 s per 0.01 s update
-(1.98 m/s^2, docs/COMPAT-plugins.md) and loses v^2 / 2a = 0.0631 m against v t. The default goal is (2, 0) with a 0.3 m tolerance.
+observation has a lidar scan). A 0.5 m/s command ramps at wheelAcceleration 1.8 m/s^2 over upstream's 0.011 s
+per 0.01 s update (1.98 m/s^2, docs/COMPAT-plugins.md) and loses v^2 / 2a = 0.0631 m against v t. The default goal
+is (2, 0) with a 0.3 m tolerance.
 """
 import hashlib
 import os

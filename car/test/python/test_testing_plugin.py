@@ -163,22 +163,16 @@ def test_xdist_workers_share_the_controllers_random_seed(tmp_path):
     assert seen['gw0'][3] == seen['gw1'][3], seen
 
 
-def test_processes_are_stopped_with_sigint_where_it_reaches_them():
+# A background job of a script (`pytest &`) starts with SIGINT ignored, and the master and launches the plug-in starts
+# would inherit that: they are asked to stop with SIGTERM there (a suite run that way once waited 30 s per master),
+# with SIGINT (a clean shutdown, as Ctrl-C) everywhere else.
+@pytest.mark.parametrize('handler, expected', [(signal.default_int_handler, signal.SIGINT),
+                                               (signal.SIG_IGN, signal.SIGTERM)],
+                         ids=['sigint-reaches', 'sigint-ignored'])
+def test_processes_are_stopped_with_a_signal_that_reaches_them(handler, expected):
     from car.testing.sim import shutdown_signal
-    old = signal.signal(signal.SIGINT, signal.default_int_handler)
+    old = signal.signal(signal.SIGINT, handler)
     try:
-        assert shutdown_signal() == signal.SIGINT
-    finally:
-        signal.signal(signal.SIGINT, old)
-
-
-def test_processes_are_stopped_with_sigterm_where_sigint_is_ignored():
-    # a background job of a script (`pytest &`) starts with SIGINT ignored, and the master and launches the plug-in
-    # starts would inherit that: they are asked to stop with SIGTERM instead (a suite run that way once waited 30 s
-    # per master)
-    from car.testing.sim import shutdown_signal
-    old = signal.signal(signal.SIGINT, signal.SIG_IGN)
-    try:
-        assert shutdown_signal() == signal.SIGTERM
+        assert shutdown_signal() == expected
     finally:
         signal.signal(signal.SIGINT, old)

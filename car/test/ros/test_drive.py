@@ -41,7 +41,8 @@ class DriveTest(unittest.TestCase):
 
     def test_seed_command_drives_a_circle_of_radius_v_over_w(self):
         self.start(1.0, 1.0)
-        t0, lap = 1.0, 2 * math.pi  # wheels at speed after 1.1 / 1.98 = 0.56 s (the drive's 1.8 m/s^2 over 11 ms per 10)
+        # wheels at speed after 1.1 / 1.98 = 0.56 s (the drive's 1.8 m/s^2 over 11 ms per 10 ms update)
+        t0, lap = 1.0, 2 * math.pi
         msgs = self.truth.until(t0 + lap + 0.1)
         points = [xy(m) for m in msgs if t0 <= m.header.stamp.to_sec() <= t0 + lap]
         _, radius = fit_circle(points)
