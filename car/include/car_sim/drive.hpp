@@ -31,12 +31,12 @@ class UpdateClock {
   void begin(uint64_t tick, double dt) {
     if (started_) return;
     started_ = true;
-    last_ns_ = static_cast<int64_t>(tick) * common_time_ns(dt);
+    last_ns_ = tick_time_ns(tick, dt);
   }
   // At an update, in the pre_physics of the tick whose state it read: seconds_since_last_update [s]; `last` then
   // moves on by the period (never, with updateRate 0: the time since the load, as upstream).
   double since(uint64_t tick, double dt) {
-    const double s = common_time_double((static_cast<int64_t>(tick) + 1) * common_time_ns(dt) - last_ns_);
+    const double s = common_time_double(tick_time_ns(tick + 1, dt) - last_ns_);
     last_ns_ += period_ns_;
     return s;
   }

@@ -224,6 +224,8 @@ inline int64_t common_time_ns(double seconds) {
   const double whole = std::floor(seconds);
   return static_cast<int64_t>(whole) * 1000000000 + std::llround((seconds - whole) * 1e9);
 }
+// [ns] The sim time of a tick at step dt [s], as Gazebo's sim time adds common::Time(dt) per step.
+inline int64_t tick_time_ns(uint64_t tick, double dt) { return static_cast<int64_t>(tick) * common_time_ns(dt); }
 // common::Time::Double() of a time in nanoseconds (>= 0): sec + nsec * 1e-9, in that order.
 inline double common_time_double(int64_t ns) {
   return static_cast<double>(ns / 1000000000) + static_cast<double>(ns % 1000000000) * 1e-9;

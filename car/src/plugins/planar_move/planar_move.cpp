@@ -54,7 +54,7 @@ class PlanarMove : public Plugin, public TwistDrive {
     if (!have_last_) {
       // the load (or, car, a reset): odometry's clock and finite differences start from here
       last_pose_ = s.pose;
-      last_ns_ = static_cast<int64_t>(ctx.tick) * common_time_ns(ctx.dt);
+      last_ns_ = tick_time_ns(ctx.tick, ctx.dt);
       have_last_ = true;
     }
     const Eigen::Vector2d v = planar_world_velocity(vx_, vy_, yaw_of(s.pose));
@@ -65,7 +65,7 @@ class PlanarMove : public Plugin, public TwistDrive {
   // (strictly), then last = t, so a period of whole steps goes out one step late each time (docs/COMPAT-plugins.md).
   void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) override {
     if (rate_ <= 0) return;
-    const int64_t t_ns = (static_cast<int64_t>(ctx.tick) + 1) * common_time_ns(ctx.dt);
+    const int64_t t_ns = tick_time_ns(ctx.tick + 1, ctx.dt);
     // [s] upstream's seconds_since_last_update, also the divisor of its finite differences
     const double period = common_time_double(t_ns - last_ns_);
     if (!(period > 1.0 / rate_)) return;
