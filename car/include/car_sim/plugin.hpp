@@ -76,20 +76,29 @@ using OutputQueue = std::vector<OutputPtr>;
 
 // Updates at ticks start + ceil(k * num / den), k = 1, 2, ...: a period of num/den ticks, so a rate such as
 // 5.5 Hz at 1 ms (2000/11 ticks) stays on its schedule exactly, with integer arithmetic only.
+// Schedule::absolute instead keeps hector's UpdateTimer grid of absolute sim time (docs/COMPAT-sensors.md).
 class Schedule {
  public:
   Schedule() = default;
   // rate [Hz] at step dt [s]; rate <= 0 means every step.
   Schedule(double rate, double dt, uint64_t start_tick);
-  bool due(uint64_t tick) const { return tick >= next_; }
+  // Due at a tick whose sim time t [ns] has fmod(common::Time(t - offset_ns).Double() + dt / 2, period) in
+  // [0, dt), as hector's UpdateTimer::checkUpdate; period [s] 0: every step. Neither the start nor a restart
+  // moves the grid.
+  static Schedule absolute(double period, int64_t offset_ns, double dt);
+  bool due(uint64_t tick) const { return absolute_ ? absolute_due(tick) : tick >= next_; }
   // After a due tick: the next one (never in the past, so a pause in activity gives no burst).
   void advance(uint64_t tick);
   void restart(uint64_t start_tick);
 
  private:
+  bool absolute_due(uint64_t tick) const;
   uint64_t num_ = 1, den_ = 1;  // period [ticks] = num / den
   uint64_t start_ = 0, k_ = 0;
   uint64_t next_ = 1;
+  bool absolute_ = false;
+  double period_ = 0.0, dt_ = 0.0;  // [s]
+  int64_t offset_ns_ = 0;
 };
 
 // ---- what a plug-in may read and do -----------------------------------------------------------------------
@@ -169,6 +178,9 @@ class Plugin {
   virtual ~Plugin() = default;
   // [Hz] of post_physics; 0 = every step.
   virtual double update_rate() const = 0;
+  // When post_physics is due, for a plug-in configured at start_tick with step dt [s]: whole periods of
+  // update_rate() from start_tick unless the kind keeps another clock (Schedule::absolute).
+  virtual Schedule schedule(double dt, uint64_t start_tick) const { return Schedule(update_rate(), dt, start_tick); }
   // Joints this plug-in drives. Asked before the robot's physics is built (a driven caster keeps its friction).
   virtual std::vector<std::string> driven_joints() const { return {}; }
   // Binds to the robot: looks its joints and links up, adds motors. Once, after the robot's bodies exist.

@@ -226,7 +226,8 @@ inline int64_t common_time_ns(double seconds) {
 }
 // [ns] The sim time of a tick at step dt [s], as Gazebo's sim time adds common::Time(dt) per step.
 inline int64_t tick_time_ns(uint64_t tick, double dt) { return static_cast<int64_t>(tick) * common_time_ns(dt); }
-// common::Time::Double() of a time in nanoseconds (>= 0): sec + nsec * 1e-9, in that order.
+// common::Time::Double() of a time in nanoseconds: sec + nsec * 1e-9, in that order. A negative time too: Time's
+// Correct() gives sec and nsec one sign, as the division here (towards zero) does.
 inline double common_time_double(int64_t ns) {
   return static_cast<double>(ns / 1000000000) + static_cast<double>(ns % 1000000000) * 1e-9;
 }

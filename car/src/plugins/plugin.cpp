@@ -43,6 +43,21 @@ Schedule::Schedule(double rate, double dt, uint64_t start_tick) {
   restart(start_tick);
 }
 
+Schedule Schedule::absolute(double period, int64_t offset_ns, double dt) {
+  Schedule s;
+  s.absolute_ = true;
+  s.period_ = period;
+  s.offset_ns_ = offset_ns;
+  s.dt_ = dt;
+  return s;
+}
+
+bool Schedule::absolute_due(uint64_t tick) const {
+  if (period_ == 0.0) return true;
+  const double fraction = std::fmod(common_time_double(tick_time_ns(tick, dt_) - offset_ns_) + dt_ / 2.0, period_);
+  return fraction >= 0.0 && fraction < dt_;
+}
+
 void Schedule::restart(uint64_t start_tick) {
   start_ = start_tick;
   k_ = 1;

@@ -168,7 +168,7 @@ struct World::Impl : WorldAccess {
   void configure(RobotRt& r, Instance& i, uint64_t tick) {
     i.plugin->configure(r);
     i.info.summary = i.plugin->summary();
-    i.schedule = Schedule(i.info.rate, desc.step_size, tick);
+    i.schedule = i.plugin->schedule(desc.step_size, tick);
   }
 
   // A fresh physics from the description; robots rebuilt where they were spawned, their motors re-made in id

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <cctype>
 #include <set>
@@ -43,13 +44,101 @@ inline std::vector<ParamDef> model_schema(const std::string& prefix, const char*
   };
 }
 
-// updateRate [Hz] (default per plug-in) and updatePeriod [s]; the period wins when given.
+// hector's UpdateTimer keys (update_timer.h; docs/COMPAT-sensors.md "When, exactly"): updateRate [Hz] (default per
+// plug-in), and updatePeriod and updateOffset as sdf::Time "SEC NSEC".
 inline std::vector<ParamDef> timer_schema(const char* default_rate) {
-  return {{"updateRate", ParamType::Number, default_rate, "Hz"}, {"updatePeriod", ParamType::Number, "0", "s"}};
+  return {{"updateRate", ParamType::Number, default_rate, "Hz"},
+          {"updatePeriod", ParamType::Text, "0", "SEC NSEC"},
+          {"updateOffset", ParamType::Text, "0", "SEC NSEC"}};
 }
-inline double timer_rate(const PluginConfig& c) {
-  if (!c.param("updatePeriod").from_default) return c.number("updatePeriod") > 0 ? 1.0 / c.number("updatePeriod") : 0.0;
-  return c.number("updateRate");
+
+// sdf::Time's stream read, as sdformat 9's Param::Get gives it a plug-in's string element: `in >> sec >> nsec`
+// into int32, where a read that fails leaves 0 and ends the reading ("0.25" is 0 s 0 ns).
+struct SdfTime {
+  int32_t sec = 0, nsec = 0;
+  explicit SdfTime(const std::string& text) {
+    std::istringstream in(text);
+    in >> sec >> nsec;
+  }
+  int64_t ns() const { return static_cast<int64_t>(sec) * 1000000000 + nsec; }
+  // common::Time::Double() of the Time as read (not normalised): sec + nsec * 1e-9
+  double seconds() const { return static_cast<double>(sec) + static_cast<double>(nsec) * 1e-9; }
+  // The text is one or two integers (each an int32) and nothing else: what the read takes it to mean.
+  static bool whole(const std::string& text) {
+    std::istringstream in(text);
+    int64_t v = 0;
+    for (int i = 0; i < 2; ++i) {
+      if (!(in >> v) || v != static_cast<int32_t>(v)) return false;
+      if ((in >> std::ws).eof()) return true;
+    }
+    return false;
+  }
+};
+
+// The timer of one hector plug-in: the period [s] as UpdateTimer's update_period_.Double(), the offset [ns].
+struct UpdateTimer {
+  double period = 0.0;
+  int64_t offset_ns = 0;
+
+  explicit UpdateTimer(const PluginConfig& c) {
+    // common::Time(1 / rate), whole nanoseconds; a rate <= 0 gives 0
+    const double rate = c.number("updateRate");
+    if (rate > 0) period = common_time_double(common_time_ns(1.0 / rate));
+    if (!c.param("updatePeriod").from_default) period = SdfTime(c.text("updatePeriod")).seconds();
+    if (!c.param("updateOffset").from_default) offset_ns = SdfTime(c.text("updateOffset")).ns();
+  }
+  double rate() const { return period > 0 ? 1.0 / period : 0.0; }
+  Schedule schedule(double dt) const { return Schedule::absolute(period, offset_ns, dt); }
+};
+
+// getTimeSinceLastUpdate: [s] since the last update in whole nanoseconds, 0 at the first (and after unset()).
+class LastUpdate {
+ public:
+  double since(const StepContext& ctx) {
+    const int64_t now = tick_time_ns(ctx.tick, ctx.dt);
+    const double dt = last_ns_ < 0 ? 0.0 : common_time_double(now - last_ns_);
+    last_ns_ = now;
+    return dt;
+  }
+  void unset() { last_ns_ = -1; }
+
+ private:
+  int64_t last_ns_ = -1;
+};
+
+// Warns where upstream's reading differs from what the text seems to say: a rate < 0 (every step), and a period or
+// offset that is not "SEC NSEC" integers (sdf::Time reads "0.25" as 0 s).
+inline void finish_timer(ResolveContext& ctx) {
+  const PluginConfig& c = ctx.config();
+  if (c.number("updateRate") < 0)
+    ctx.warn(Severity::Warning, "key-value", "updateRate",
+             "<updateRate> " + c.text("updateRate") + " is not > 0: hector's UpdateTimer then updates every step");
+  for (const char* k : {"updatePeriod", "updateOffset"}) {
+    if (c.param(k).from_default) continue;
+    const std::string& t = c.text(k);
+    if (SdfTime::whole(t)) continue;
+    const int64_t ns = SdfTime(t).ns();
+    char read[64];
+    std::snprintf(read, sizeof read, "%g s", SdfTime(t).seconds());
+    std::string m = "<" + std::string(k) + "> '" + t + "' is read as sdf::Time 'SEC NSEC' by hector's UpdateTimer: " + read;
+    const bool period = std::string(k) == "updatePeriod";
+    if (period && ns == 0) m += ", so the plug-in updates every step";
+    // what a number of seconds would be written as
+    std::istringstream in(t);
+    double x = 0;
+    if ((in >> x) && (in >> std::ws).eof() && std::isfinite(x) && x > 0) {
+      const int64_t x_ns = common_time_ns(x);
+      char fix[128];
+      if (period)
+        std::snprintf(fix, sizeof fix, "; write <updateRate>%g</updateRate> or '%lld %lld'", 1.0 / x,
+                      static_cast<long long>(x_ns / 1000000000), static_cast<long long>(x_ns % 1000000000));
+      else
+        std::snprintf(fix, sizeof fix, "; write '%lld %lld'", static_cast<long long>(x_ns / 1000000000),
+                      static_cast<long long>(x_ns % 1000000000));
+      m += fix;
+    }
+    ctx.warn(Severity::Warning, "key-value", k, m);
+  }
 }
 
 // Parses n numbers; false when the text is not n finite numbers.

@@ -25,7 +25,7 @@ constexpr double kExcentricity2 = 2 * kFlattening - kFlattening * kFlattening;
 class HectorGps : public Plugin {
  public:
   HectorGps(const PluginConfig& c, const std::string& robot, uint64_t seed)
-      : link_(c.text("bodyName")), rate_(hector::timer_rate(c)), rng0_(plugin_rng(seed, robot, c.name)) {
+      : link_(c.text("bodyName")), timer_(c), rng0_(plugin_rng(seed, robot, c.name)) {
     lat0_ = c.number("referenceLatitude");
     lon0_ = c.number("referenceLongitude");
     heading_ = c.number("referenceHeading") * kDeg;
@@ -46,20 +46,20 @@ class HectorGps : public Plugin {
     reset();
   }
 
-  double update_rate() const override { return rate_; }
+  double update_rate() const override { return timer_.rate(); }
+  Schedule schedule(double dt, uint64_t) const override { return timer_.schedule(dt); }
   void reset() override {
     rng_ = rng0_;
     position_.reset(rng_);
     velocity_.reset(rng_);
-    last_ = -1.0;
+    last_.unset();
   }
   void set_active(bool active) override {
-    if (active) last_ = -1.0;
+    if (active) last_.unset();
   }
 
   void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) override {
-    const double dt = last_ < 0 ? 0.0 : ctx.time() - last_;  // [s] since the last update
-    last_ = ctx.time();
+    const double dt = last_.since(ctx);  // [s] since the last update
     const ModelState s = robot.link_state(link_);
     const Eigen::Vector3d v = velocity_(s.linear, dt, rng_);
     const Eigen::Vector3d p = position_(s.pose.translation(), dt, rng_);
@@ -75,12 +75,12 @@ class HectorGps : public Plugin {
 
  private:
   std::string link_;
-  double rate_;
+  hector::UpdateTimer timer_;
   double lat0_ = 0, lon0_ = 0, heading_ = 0, alt0_ = 0, radius_north_ = 0, radius_east_ = 0;
   hector::SensorModel<3> position_, velocity_;
   std::mt19937_64 rng0_, rng_;
   GpsOut proto_;
-  double last_ = -1.0;
+  hector::LastUpdate last_;
 };
 
 void finish(ResolveContext& ctx) {
@@ -90,7 +90,7 @@ void finish(ResolveContext& ctx) {
   if (!ctx.model().find_link(body)) ctx.fail("bodyName", "link '" + body + "' not found in the model");
   c.link = body;
   if (std::abs(c.number("referenceLatitude")) >= 90) ctx.fail("referenceLatitude", "must be inside (-90, 90) deg");
-  if (c.number("updateRate") < 0) ctx.fail("updateRate", "must be >= 0");
+  hector::finish_timer(ctx);
   hector::finish_model(ctx, "", 3);
   hector::finish_model(ctx, "velocity", 3);
   if (c.flag("useWorldSphericalCoordinates"))
@@ -133,7 +133,7 @@ const PluginKind& hector_gps_kind() {
     for (const auto& d : hector::timer_schema("4")) k.schema.push_back(d);
     for (const auto& d : hector::model_schema("", "m")) k.schema.push_back(d);
     for (const auto& d : hector::model_schema("velocity", "m/s")) k.schema.push_back(d);
-    k.ignored = {{"alwaysOn", ""}, {"updateOffset", "not simulated"}};
+    k.ignored = {{"alwaysOn", ""}};
     k.lazy = true;
     k.output_group = "gps";
     // sensor_msgs/NavSatFix on topicName, then geometry_msgs/Vector3Stamped on velocityTopicName, queue 10, frameId

@@ -27,7 +27,7 @@ bool parse3(const std::string& t, Eigen::Vector3d* v) {
 class HectorImu : public Plugin {
  public:
   HectorImu(const PluginConfig& c, const std::string& robot, uint64_t seed)
-      : link_(c.text("bodyName")), rate_(hector::timer_rate(c)), rng0_(plugin_rng(seed, robot, c.name)) {
+      : link_(c.text("bodyName")), timer_(c), rng0_(plugin_rng(seed, robot, c.name)) {
     accel_.load(c, "accel");
     rate_model_.load(c, "rate");
     yaw_.load(c, "yaw");
@@ -44,7 +44,8 @@ class HectorImu : public Plugin {
     reset();
   }
 
-  double update_rate() const override { return rate_; }
+  double update_rate() const override { return timer_.rate(); }
+  Schedule schedule(double dt, uint64_t) const override { return timer_.schedule(dt); }
   void reset() override {
     rng_ = rng0_;
     orientation_ = Eigen::Quaterniond::Identity();
@@ -54,15 +55,14 @@ class HectorImu : public Plugin {
     accel_.reset(rng_);
     rate_model_.reset(rng_);
     yaw_.reset(rng_);
-    last_ = -1.0;
+    last_.unset();
   }
   void set_active(bool active) override {
-    if (active) last_ = -1.0;
+    if (active) last_.unset();
   }
 
   void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) override {
-    const double dt = last_ < 0 ? 0.0 : ctx.time() - last_;  // [s] since the last update
-    last_ = ctx.time();
+    const double dt = last_.since(ctx);  // [s] since the last update
     const ModelState s = robot.link_state(link_);
     const Eigen::Quaterniond link_rot(s.pose.linear());
     Eigen::Quaterniond rot = (offset_ * link_rot).normalized();
@@ -103,14 +103,14 @@ class HectorImu : public Plugin {
 
  private:
   std::string link_;
-  double rate_;
+  hector::UpdateTimer timer_;
   Eigen::Quaterniond offset_;
   hector::SensorModel<3> accel_, rate_model_;
   hector::SensorModel<1> yaw_;
   std::mt19937_64 rng0_, rng_;
   Eigen::Quaterniond orientation_;
   Eigen::Vector3d velocity_, accel_value_, rate_value_;
-  double last_ = -1.0;
+  hector::LastUpdate last_;
 };
 
 void finish(ResolveContext& ctx) {
@@ -122,7 +122,7 @@ void finish(ResolveContext& ctx) {
   if (c.text("frameId").empty()) ctx.set("frameId", body);
   if (c.param("biasTopicName").from_default && !c.text("topicName").empty())
     ctx.set("biasTopicName", c.text("topicName") + "/bias");
-  if (c.number("updateRate") < 0) ctx.fail("updateRate", "must be >= 0");
+  hector::finish_timer(ctx);
   hector::finish_model(ctx, "accel", 3);
   hector::finish_model(ctx, "rate", 3);
   hector::finish_model(ctx, "yaw", 1);
@@ -196,7 +196,6 @@ const PluginKind& hector_imu_kind() {
     for (const auto& d : hector::model_schema("rate", "rad/s")) k.schema.push_back(d);
     for (const auto& d : hector::model_schema("yaw", "rad")) k.schema.push_back(d);
     k.ignored = {{"alwaysOn", ""},
-                 {"updateOffset", "not simulated"},
                  {"serviceName", "the calibrate and set_*_bias services are not provided"}};
     k.lazy = true;
     k.output_group = "imus";

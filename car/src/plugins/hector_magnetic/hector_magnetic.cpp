@@ -20,7 +20,7 @@ constexpr double kDeg = M_PI / 180.0;
 class HectorMagnetic : public Plugin {
  public:
   HectorMagnetic(const PluginConfig& c, const std::string& robot, uint64_t seed)
-      : link_(c.text("bodyName")), rate_(hector::timer_rate(c)), rng0_(plugin_rng(seed, robot, c.name)) {
+      : link_(c.text("bodyName")), timer_(c), rng0_(plugin_rng(seed, robot, c.name)) {
     const double m = c.number("magnitude"), h = c.number("referenceHeading") * kDeg,
                  d = c.number("declination") * kDeg, i = c.number("inclination") * kDeg;
     field_world_ = m * Eigen::Vector3d(std::cos(i) * std::cos(h - d), std::cos(i) * std::sin(h - d), -std::sin(i));
@@ -28,19 +28,19 @@ class HectorMagnetic : public Plugin {
     reset();
   }
 
-  double update_rate() const override { return rate_; }
+  double update_rate() const override { return timer_.rate(); }
+  Schedule schedule(double dt, uint64_t) const override { return timer_.schedule(dt); }
   void reset() override {
     rng_ = rng0_;
     model_.reset(rng_);
-    last_ = -1.0;
+    last_.unset();
   }
   void set_active(bool active) override {
-    if (active) last_ = -1.0;
+    if (active) last_.unset();
   }
 
   void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) override {
-    const double dt = last_ < 0 ? 0.0 : ctx.time() - last_;  // [s] since the last update
-    last_ = ctx.time();
+    const double dt = last_.since(ctx);  // [s] since the last update
     const Eigen::Isometry3d pose = robot.link_pose(link_);
     auto o = std::make_unique<MagneticOut>();
     o->field = model_(pose.linear().transpose() * field_world_, dt, rng_);
@@ -49,11 +49,11 @@ class HectorMagnetic : public Plugin {
 
  private:
   std::string link_;
-  double rate_;
+  hector::UpdateTimer timer_;
   Eigen::Vector3d field_world_;
   hector::SensorModel<3> model_;
   std::mt19937_64 rng0_, rng_;
-  double last_ = -1.0;
+  hector::LastUpdate last_;
 };
 
 void finish(ResolveContext& ctx) {
@@ -63,7 +63,7 @@ void finish(ResolveContext& ctx) {
   if (!ctx.model().find_link(body)) ctx.fail("bodyName", "link '" + body + "' not found in the model");
   c.link = body;
   if (c.text("frameId").empty()) ctx.set("frameId", body);
-  if (c.number("updateRate") < 0) ctx.fail("updateRate", "must be >= 0");
+  hector::finish_timer(ctx);
   hector::finish_model(ctx, "", 3);
   if (c.flag("useWorldSphericalCoordinates"))
     ctx.warn(Severity::Warning, "key-unsupported", "useWorldSphericalCoordinates",
@@ -94,7 +94,7 @@ const PluginKind& hector_magnetic_kind() {
     };
     for (const auto& d : hector::timer_schema("0")) k.schema.push_back(d);
     for (const auto& d : hector::model_schema("", "")) k.schema.push_back(d);
-    k.ignored = {{"alwaysOn", ""}, {"updateOffset", "not simulated"}};
+    k.ignored = {{"alwaysOn", ""}};
     k.lazy = true;
     k.output_group = "magnetic";
     // geometry_msgs/Vector3Stamped, or sensor_msgs/MagneticField with useMagneticFieldMsgs, on topicName in frameId,

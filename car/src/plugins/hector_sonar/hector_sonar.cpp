@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../hector_common/sensor_model.hpp"
 #include "../laser/laser.hpp"
 #include "../range/range.hpp"
 
@@ -21,8 +22,7 @@ constexpr ParamType N = ParamType::Number;
 class HectorSonar : public Plugin {
  public:
   HectorSonar(const PluginConfig& c, const std::string& robot, uint64_t seed)
-      : link_(c.link), sensor_pose_(c.sensor_pose), grid_(c), rng0_(plugin_rng(seed, robot, c.sensor)) {
-    rate_ = c.number("updatePeriod") > 0 ? 1.0 / c.number("updatePeriod") : c.number("updateRate");
+      : link_(c.link), sensor_pose_(c.sensor_pose), grid_(c), timer_(c), rng0_(plugin_rng(seed, robot, c.sensor)) {
     offset_ = c.number("offset");
     drift_ = c.number("drift");
     drift_frequency_ = c.number("driftFrequency");
@@ -39,22 +39,21 @@ class HectorSonar : public Plugin {
     reset();
   }
 
-  double update_rate() const override { return rate_; }
+  double update_rate() const override { return timer_.rate(); }
+  Schedule schedule(double dt, uint64_t) const override { return timer_.schedule(dt); }
 
   // SensorModel::reset: the drift starts at N(0, drift)
   void reset() override {
     rng_ = rng0_;
     current_drift_ = gauss(drift_);
-    last_ = -1.0;
+    last_.unset();
   }
   void set_active(bool active) override {
-    if (active) last_ = -1.0;
+    if (active) last_.unset();
   }
 
   void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) override {
-    const double now = ctx.time();
-    const double dt = last_ < 0 ? 0.0 : now - last_;  // [s] since the last update
-    last_ = now;
+    const double dt = last_.since(ctx);  // [s] since the last update
     const auto& hits = grid_.cast(ctx, robot.link_pose(link_) * sensor_pose_);
     double r = proto_.max_range;
     for (const RayHit& h : hits)
@@ -80,10 +79,10 @@ class HectorSonar : public Plugin {
   std::string link_;
   Eigen::Isometry3d sensor_pose_;
   RayGrid grid_;
-  double rate_ = 10;
+  hector::UpdateTimer timer_;
   double offset_ = 0, drift_ = 0, drift_frequency_ = 0, noise_ = 0, scale_ = 1;
   double current_drift_ = 0;
-  double last_ = -1.0;  // [s] sim time of the last update, < 0 when none
+  hector::LastUpdate last_;
   std::mt19937_64 rng0_, rng_;
   RangeOut proto_;
 };
@@ -91,7 +90,8 @@ class HectorSonar : public Plugin {
 void finish(ResolveContext& ctx) {
   finish_ray(ctx);
   const PluginConfig& c = ctx.config();
-  for (const char* k : {"updateRate", "updatePeriod", "drift", "driftFrequency", "gaussianNoise"})
+  hector::finish_timer(ctx);
+  for (const char* k : {"drift", "driftFrequency", "gaussianNoise"})
     if (c.number(k) < 0) ctx.fail(k, "must be >= 0");
 }
 
@@ -109,15 +109,14 @@ const PluginKind& hector_sonar_kind() {
         {"robotNamespace", T, "", ""},
         {"topicName", T, "sonar", ""},
         {"frameId", Fr, "/sonar_link", ""},
-        {"updateRate", N, "10", "Hz"},
-        {"updatePeriod", N, "0", "s"},
         {"offset", N, "0", "m"},
         {"drift", N, "0", "m"},
         {"driftFrequency", N, "0.000277777777777778", "1/s"},
         {"gaussianNoise", N, "0", "m"},
         {"scaleError", N, "1", ""},
     };
-    k.ignored = {{"alwaysOn", ""}, {"updateOffset", "not simulated"}};
+    for (const auto& d : hector::timer_schema("10")) k.schema.push_back(d);
+    k.ignored = {{"alwaysOn", ""}};
     k.lazy = true;
     k.output_group = "ranges";
     // sensor_msgs/Range (ULTRASOUND) on topicName in frameId, queue 1, at the plug-in's own rate

@@ -41,9 +41,10 @@ TEST(HectorSonar, ReadsTheWallAndTheNarrowerSpan) {
   EXPECT_FLOAT_EQ(rs.back().max_range, 3.0f);
 }
 
+// updatePeriod is sdf::Time "SEC NSEC" (test_update_timer.cpp has the rest of hector's timer).
 TEST(HectorSonar, UpdateRateAndPeriodSetTheRate) {
   EXPECT_EQ(ranges("<updateRate>50</updateRate>").size(), 50u);
-  EXPECT_EQ(ranges("<updatePeriod>0.25</updatePeriod>").size(), 4u);
+  EXPECT_EQ(ranges("<updatePeriod>0 250000000</updatePeriod>").size(), 4u);
 }
 
 // scaleError 1.1 and offset 0.05: 1.9 x 1.1 + 0.05 = 2.14 m.
