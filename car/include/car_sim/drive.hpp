@@ -18,36 +18,6 @@ class TwistDrive {
   virtual void set_twist(const Twist& cmd) = 0;
 };
 
-// The update clock of gazebo_ros's drive plug-ins (UpdateChild: an update when t - last > period, then
-// `last_update_time_ += common::Time(update_period_)`; docs/COMPAT-plugins.md "the update and the wheel ramp").
-// car's schedule picks the update ticks; this gives upstream's seconds_since_last_update at each, in common::Time's
-// whole nanoseconds. Gazebo calls a plug-in at the sim time after the step whose state it reads.
-class UpdateClock {
- public:
-  UpdateClock() = default;
-  explicit UpdateClock(double rate) : period_ns_(rate > 0 ? common_time_ns(1.0 / rate) : 0) {}
-  // In every pre_physics: the first call after the spawn or a restart() starts `last` at that tick's time (the
-  // load's, or the reset's).
-  void begin(uint64_t tick, double dt) {
-    if (started_) return;
-    started_ = true;
-    last_ns_ = tick_time_ns(tick, dt);
-  }
-  // At an update, in the pre_physics of the tick whose state it read: seconds_since_last_update [s]; `last` then
-  // moves on by the period (never, with updateRate 0: the time since the load, as upstream).
-  double since(uint64_t tick, double dt) {
-    const double s = common_time_double(tick_time_ns(tick + 1, dt) - last_ns_);
-    last_ns_ += period_ns_;
-    return s;
-  }
-  void restart() { started_ = false; }
-
- private:
-  int64_t period_ns_ = 0;  // [ns] common::Time(1 / updateRate)
-  int64_t last_ns_ = 0;    // [ns] upstream's last_update_time_
-  bool started_ = false;
-};
-
 // One odometry message of a drive plug-in, produced at its update rate.
 struct OdometryOut : Output {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // base frame in the odometry frame

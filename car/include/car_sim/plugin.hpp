@@ -74,9 +74,49 @@ using OutputQueue = std::vector<OutputPtr>;
 
 // ---- schedule ---------------------------------------------------------------------------------------------
 
+// The update clock of gazebo_ros's UpdateChild (the diff drive, skid steer and tricycle, the joint state publisher;
+// docs/COMPAT-plugins.md "the update and the wheel ramp"): a call at sim time t updates when (t - last).Double() >
+// 1 / updateRate (strictly; every call with updateRate <= 0), and then `last_update_time_ +=
+// common::Time(update_period_)`; last starts at the load. Gazebo calls a plug-in at the sim time after the step
+// whose state it reads, so the call that reads tick k's state is at tick k + 1. Whole nanoseconds, as common::Time.
+class UpdateClock {
+ public:
+  UpdateClock() = default;
+  explicit UpdateClock(double rate)
+      : period_(rate > 0 ? 1.0 / rate : 0.0), period_ns_(rate > 0 ? common_time_ns(1.0 / rate) : 0) {}
+  // last = the sim time of tick (the load's, or a reset's).
+  void start(uint64_t tick, double dt) {
+    started_ = true;
+    last_ns_ = tick_time_ns(tick, dt);
+  }
+  // start() at the first call after construction or restart(): a plug-in learns the tick in its first pre_physics.
+  void begin(uint64_t tick, double dt) {
+    if (!started_) start(tick, dt);
+  }
+  void restart() { started_ = false; }
+  // seconds_since_last_update [s] of the call that reads tick's state.
+  double seconds(uint64_t tick, double dt) const { return common_time_double(tick_time_ns(tick + 1, dt) - last_ns_); }
+  // That call updates.
+  bool due(uint64_t tick, double dt) const { return seconds(tick, dt) > period_; }
+  // At an update: seconds_since_last_update, and last moves on by the period (never, with updateRate 0: the time
+  // since the load, as upstream).
+  double since(uint64_t tick, double dt) {
+    const double s = seconds(tick, dt);
+    last_ns_ += period_ns_;
+    return s;
+  }
+
+ private:
+  double period_ = 0.0;    // [s] update_period_, 1 / updateRate as a double
+  int64_t period_ns_ = 0;  // [ns] common::Time(update_period_)
+  int64_t last_ns_ = 0;    // [ns] last_update_time_
+  bool started_ = false;
+};
+
 // Updates at ticks start + ceil(k * num / den), k = 1, 2, ...: a period of num/den ticks, so a rate such as
 // 5.5 Hz at 1 ms (2000/11 ticks) stays on its schedule exactly, with integer arithmetic only.
-// Schedule::absolute instead keeps hector's UpdateTimer grid of absolute sim time (docs/COMPAT-sensors.md).
+// Schedule::absolute instead keeps hector's UpdateTimer grid of absolute sim time (docs/COMPAT-sensors.md), and
+// Schedule::update_clock gazebo_ros's UpdateChild rule (UpdateClock).
 class Schedule {
  public:
   Schedule() = default;
@@ -86,19 +126,29 @@ class Schedule {
   // [0, dt), as hector's UpdateTimer::checkUpdate; period [s] 0: every step. Neither the start nor a restart
   // moves the grid.
   static Schedule absolute(double period, int64_t offset_ns, double dt);
-  bool due(uint64_t tick) const { return absolute_ ? absolute_due(tick) : tick >= next_; }
+  // Due by UpdateClock(rate)'s rule, the clock started at start_tick and again at each restart.
+  static Schedule update_clock(double rate, double dt, uint64_t start_tick);
+  bool due(uint64_t tick) const {
+    switch (mode_) {
+      case Mode::Absolute: return absolute_due(tick);
+      case Mode::Clock: return clock_.due(tick, dt_);
+      default: return tick >= next_;
+    }
+  }
   // After a due tick: the next one (never in the past, so a pause in activity gives no burst).
   void advance(uint64_t tick);
   void restart(uint64_t start_tick);
 
  private:
   bool absolute_due(uint64_t tick) const;
+  enum class Mode { Count, Absolute, Clock };
+  Mode mode_ = Mode::Count;
   uint64_t num_ = 1, den_ = 1;  // period [ticks] = num / den
   uint64_t start_ = 0, k_ = 0;
   uint64_t next_ = 1;
-  bool absolute_ = false;
   double period_ = 0.0, dt_ = 0.0;  // [s]
   int64_t offset_ns_ = 0;
+  UpdateClock clock_;
 };
 
 // ---- what a plug-in may read and do -----------------------------------------------------------------------
@@ -241,6 +291,10 @@ class ResolveContext {
   PluginConfig* config_;
   std::vector<Diagnostic>* diagnostics_;
 };
+
+// A rate key [Hz] below 0: gazebo_ros's and hector's plug-ins then take a period of 0 and update every step, so
+// car warns and does the same (a refusal would be stricter than Gazebo).
+void warn_negative_rate(ResolveContext& ctx, const std::string& key);
 
 // A plug-in kind, registered once in src/plugins/registry.cpp.
 struct PluginKind {

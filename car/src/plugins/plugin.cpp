@@ -45,7 +45,7 @@ Schedule::Schedule(double rate, double dt, uint64_t start_tick) {
 
 Schedule Schedule::absolute(double period, int64_t offset_ns, double dt) {
   Schedule s;
-  s.absolute_ = true;
+  s.mode_ = Mode::Absolute;
   s.period_ = period;
   s.offset_ns_ = offset_ns;
   s.dt_ = dt;
@@ -58,13 +58,27 @@ bool Schedule::absolute_due(uint64_t tick) const {
   return fraction >= 0.0 && fraction < dt_;
 }
 
+Schedule Schedule::update_clock(double rate, double dt, uint64_t start_tick) {
+  Schedule s;
+  s.mode_ = Mode::Clock;
+  s.clock_ = UpdateClock(rate);
+  s.dt_ = dt;
+  s.restart(start_tick);
+  return s;
+}
+
 void Schedule::restart(uint64_t start_tick) {
+  if (mode_ == Mode::Clock) clock_.start(start_tick, dt_);
   start_ = start_tick;
   k_ = 1;
   next_ = start_ + (k_ * num_ + den_ - 1) / den_;
 }
 
 void Schedule::advance(uint64_t tick) {
+  if (mode_ == Mode::Clock) {
+    clock_.since(tick, dt_);
+    return;
+  }
   ++k_;
   next_ = start_ + (k_ * num_ + den_ - 1) / den_;
   if (next_ <= tick) restart(tick);  // after a pause of the world's stepping: no burst
@@ -160,6 +174,12 @@ void ResolveContext::fail_sensor(const std::string& key, const std::string& reas
 void ResolveContext::warn(Severity severity, const std::string& code, const std::string& key,
                           const std::string& message) {
   diagnostics_->push_back({severity, code, where(key), message, spec_.line});
+}
+
+void warn_negative_rate(ResolveContext& ctx, const std::string& key) {
+  if (ctx.config().number(key) < 0)
+    ctx.warn(Severity::Warning, "key-value", key,
+             "<" + key + "> " + ctx.config().text(key) + " is not > 0: the plug-in updates every step, as upstream");
 }
 
 void ResolveContext::set(const std::string& key, const std::string& value) {

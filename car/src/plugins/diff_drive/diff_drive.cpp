@@ -87,6 +87,10 @@ class DiffDrive : public Plugin, public TwistDrive {
       : cfg_(DiffDriveConfig::from(c, robot)), clock_(cfg_.update_rate) {}
 
   double update_rate() const override { return cfg_.update_rate; }
+  // gazebo_ros's UpdateChild rule (UpdateClock)
+  Schedule schedule(double dt, uint64_t start_tick) const override {
+    return Schedule::update_clock(cfg_.update_rate, dt, start_tick);
+  }
   std::vector<std::string> driven_joints() const override { return {cfg_.left_joint, cfg_.right_joint}; }
 
   void configure(RobotHandle& robot) override {
@@ -195,7 +199,7 @@ void finish(ResolveContext& ctx) {
   check_wheel_length(ctx, "wheelDiameter");
   if (c.number("wheelTorque") < 0) ctx.fail("wheelTorque", "must be >= 0");
   if (c.number("wheelAcceleration") < 0) ctx.fail("wheelAcceleration", "must be >= 0 (0 = unlimited)");
-  if (c.number("updateRate") < 0) ctx.fail("updateRate", "must be >= 0");
+  warn_negative_rate(ctx, "updateRate");
   const std::string& src = c.text("odometrySource");
   if (src != "world" && src != "encoder") ctx.fail("odometrySource", "'" + src + "' is neither 'world' nor 'encoder'");
   if (!c.flag("publishTf"))

@@ -52,7 +52,7 @@ void finish(ResolveContext& ctx) {
                           "so it has no reaction to measure (make it a revolute joint with zero limits)");
   if (c.param("topicName").from_default) ctx.fail("topicName", "ft_sensor needs <topicName>");
   if (c.number("gaussianNoise") < 0) ctx.fail("gaussianNoise", "must be >= 0");
-  if (c.number("updateRate") < 0) ctx.fail("updateRate", "must be >= 0");
+  warn_negative_rate(ctx, "updateRate");
   ctx.config().link = j->child;
 }
 

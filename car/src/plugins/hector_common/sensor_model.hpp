@@ -110,9 +110,7 @@ class LastUpdate {
 // offset that is not "SEC NSEC" integers (sdf::Time reads "0.25" as 0 s).
 inline void finish_timer(ResolveContext& ctx) {
   const PluginConfig& c = ctx.config();
-  if (c.number("updateRate") < 0)
-    ctx.warn(Severity::Warning, "key-value", "updateRate",
-             "<updateRate> " + c.text("updateRate") + " is not > 0: hector's UpdateTimer then updates every step");
+  warn_negative_rate(ctx, "updateRate");
   for (const char* k : {"updatePeriod", "updateOffset"}) {
     if (c.param(k).from_default) continue;
     const std::string& t = c.text(k);

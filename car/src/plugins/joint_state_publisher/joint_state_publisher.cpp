@@ -42,6 +42,10 @@ class JointStatePublisher : public Plugin {
       : names_(split_joint_names(c.text("jointName"))), rate_(c.number("updateRate")) {}
 
   double update_rate() const override { return rate_; }
+  // gazebo_ros's UpdateChild rule (UpdateClock)
+  Schedule schedule(double dt, uint64_t start_tick) const override {
+    return Schedule::update_clock(rate_, dt, start_tick);
+  }
 
   void configure(RobotHandle& robot) override {
     for (const auto& n : names_) joints_.push_back(robot.joint(n));
@@ -68,7 +72,7 @@ void finish(ResolveContext& ctx) {
     if (!j) ctx.fail("jointName", "joint '" + n + "' not found in the model");
     if (j->type == JointType::Fixed) ctx.fail("jointName", "joint '" + n + "' is fixed; it has no state");
   }
-  if (c.number("updateRate") < 0) ctx.fail("updateRate", "must be >= 0");
+  warn_negative_rate(ctx, "updateRate");
 }
 
 }  // namespace

@@ -74,7 +74,7 @@ void finish(ResolveContext& ctx) {
   for (const char* key : {"xyzOffset", "rpyOffset"})
     if (!detail::parse_numbers(c.text(key), 3)) ctx.fail(key, "'" + c.text(key) + "' is not 3 numbers");
   if (c.number("gaussianNoise") < 0) ctx.fail("gaussianNoise", "must be >= 0");
-  if (c.number("updateRate") < 0) ctx.fail("updateRate", "must be >= 0");
+  warn_negative_rate(ctx, "updateRate");
   ctx.config().link = c.text("bodyName");
 }
 

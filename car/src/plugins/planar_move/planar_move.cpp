@@ -98,7 +98,9 @@ class PlanarMove : public Plugin, public TwistDrive {
 
 void finish(ResolveContext& ctx) {
   const PluginConfig& c = ctx.config();
-  if (c.number("odometryRate") < 0) ctx.fail("odometryRate", "must be >= 0 (0 = no odometry)");
+  if (c.number("odometryRate") < 0)
+    ctx.warn(Severity::Warning, "key-value", "odometryRate",
+             "<odometryRate> " + c.text("odometryRate") + " is not > 0: no odometry, as upstream");
 }
 
 }  // namespace

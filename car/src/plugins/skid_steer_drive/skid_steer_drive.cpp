@@ -29,6 +29,10 @@ class SkidSteer : public Plugin, public TwistDrive {
   }
 
   double update_rate() const override { return rate_; }
+  // gazebo_ros's UpdateChild rule (UpdateClock)
+  Schedule schedule(double dt, uint64_t start_tick) const override {
+    return Schedule::update_clock(rate_, dt, start_tick);
+  }
   std::vector<std::string> driven_joints() const override { return {names_, names_ + 4}; }
 
   void configure(RobotHandle& robot) override {
@@ -104,7 +108,7 @@ void finish(ResolveContext& ctx) {
   check_wheel_length(ctx, "wheelSeparation");
   check_wheel_length(ctx, "wheelDiameter");
   if (c.number("torque") < 0) ctx.fail("torque", "must be >= 0");
-  if (c.number("updateRate") < 0) ctx.fail("updateRate", "must be >= 0");
+  warn_negative_rate(ctx, "updateRate");
 }
 
 }  // namespace

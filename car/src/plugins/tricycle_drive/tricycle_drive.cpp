@@ -41,6 +41,10 @@ class Tricycle : public Plugin, public TwistDrive {
         clock_(rate_) {}
 
   double update_rate() const override { return rate_; }
+  // gazebo_ros's UpdateChild rule (UpdateClock)
+  Schedule schedule(double dt, uint64_t start_tick) const override {
+    return Schedule::update_clock(rate_, dt, start_tick);
+  }
   std::vector<std::string> driven_joints() const override { return {steer_name_, wheel_name_}; }
 
   void configure(RobotHandle& robot) override {

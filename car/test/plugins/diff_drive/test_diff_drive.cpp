@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "diff_drive/diff_drive.hpp"
+#include "seed_car.hpp"
 
 using namespace car_sim;
 
@@ -96,4 +97,18 @@ TEST(DiffDrive, EncoderKeepsTheSignWhenReversing) {
   EncoderOdometry e;
   e.integrate(-0.005, -0.005, 0.2, 0.01);
   EXPECT_DOUBLE_EQ(e.v, -0.5);  // upstream reports |v| here
+}
+
+// The seed car's drive at 30 Hz follows UpdateChild's rule (test_update_clock.cpp): odometry at ticks 33, 66, 99,
+// 133, 166, 199.
+TEST(DiffDrive, ThirtyHertzUpdatesByUpdateChildsClock) {
+  std::string xml = test_support::car_xml(false);
+  xml.replace(xml.find("<updateRate>100.0</updateRate>"), 30, "<updateRate>30</updateRate>");
+  World w(empty_world());
+  w.spawn(load_urdf_string(xml, "car"), "mycar", at(0, 0, 0));
+  w.step(200);
+  std::vector<uint64_t> ticks;
+  for (const auto& o : w.take_outputs())
+    if (dynamic_cast<const OdometryOut*>(o.get())) ticks.push_back(o->tick);
+  EXPECT_EQ(ticks, (std::vector<uint64_t>{33, 66, 99, 133, 166, 199}));
 }

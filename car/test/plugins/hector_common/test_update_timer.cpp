@@ -113,5 +113,5 @@ TEST(HectorUpdateTimer, NegativeUpdateRateIsEveryStepAndWarned) {
   EXPECT_EQ(fix_ticks("<updateRate>-5</updateRate>", 0, 10).size(), 10u);
   const auto ws = warnings("<updateRate>-5</updateRate>", "updateRate");
   ASSERT_EQ(ws.size(), 1u);
-  EXPECT_EQ(ws[0].message, "<updateRate> -5 is not > 0: hector's UpdateTimer then updates every step");
+  EXPECT_EQ(ws[0].message, "<updateRate> -5 is not > 0: the plug-in updates every step, as upstream");
 }

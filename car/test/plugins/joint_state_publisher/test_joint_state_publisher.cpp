@@ -83,3 +83,31 @@ TEST(JointStatePublisher, UnknownJointIsAnError) {
         << e.what();
   }
 }
+
+// At 30 Hz the publisher follows UpdateChild's rule (test_update_clock.cpp): ticks 33, 66, 99, 133, 166, 199.
+TEST(JointStatePublisher, ThirtyHertzUpdatesByUpdateChildsClock) {
+  auto w = test_support::world_with_car(false);
+  w->attach_plugin("mycar", jsp("left2link", "30"));
+  w->set_plugin_active("mycar", "jsp", true);
+  w->take_outputs();
+  w->step(200);
+  const OutputQueue q = w->take_outputs();
+  std::vector<uint64_t> ticks;
+  for (const JointStatesOut* o : jsp_outputs(q)) ticks.push_back(o->tick);
+  EXPECT_EQ(ticks, (std::vector<uint64_t>{33, 66, 99, 133, 166, 199}));
+}
+
+// A negative updateRate gives upstream's update_period_ 0: every step, warned (warn_negative_rate), not refused.
+TEST(JointStatePublisher, NegativeUpdateRateIsEveryStepAndWarned) {
+  auto w = test_support::world_with_car(false);
+  w->attach_plugin("mycar", jsp("left2link", "-5"));
+  w->set_plugin_active("mycar", "jsp", true);
+  w->take_outputs();
+  w->step(10);
+  const OutputQueue q = w->take_outputs();
+  EXPECT_EQ(jsp_outputs(q).size(), 10u);
+  std::vector<std::string> messages;
+  for (const Diagnostic& d : w->robot("mycar").config.diagnostics)
+    if (d.element == "gazebo/plugin[jsp]/updateRate") messages.push_back(d.message);
+  EXPECT_EQ(messages, std::vector<std::string>{"<updateRate> -5 is not > 0: the plug-in updates every step, as upstream"});
+}

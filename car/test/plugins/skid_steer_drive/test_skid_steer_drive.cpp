@@ -92,3 +92,13 @@ TEST(SkidSteer, MissingJointIsAnError) {
         << e.what();
   }
 }
+
+// At 30 Hz the odometry follows UpdateChild's rule (test_update_clock.cpp): ticks 33, 66, 99, 133, 166, 199.
+TEST(SkidSteer, ThirtyHertzUpdatesByUpdateChildsClock) {
+  World w(empty_world());
+  w.spawn(load_urdf_string(skid_robot("<updateRate>30</updateRate>"), "skid.urdf"), "skid", at(0, 0, 0));
+  w.step(200);
+  std::vector<uint64_t> ticks;
+  for (const auto& o : w.take_outputs()) ticks.push_back(o->tick);
+  EXPECT_EQ(ticks, (std::vector<uint64_t>{33, 66, 99, 133, 166, 199}));
+}

@@ -111,3 +111,13 @@ TEST(Tricycle, RampsByAccelTimesUpstreamsSecondsSinceTheLoad) {
   ASSERT_EQ(speed.size(), 9u);
   for (int k = 1; k <= 8; ++k) EXPECT_NEAR(speed[k], 0.22 * k, 1e-3) << "after update " << k;
 }
+
+// At 30 Hz the odometry follows UpdateChild's rule (test_update_clock.cpp): ticks 33, 66, 99, 133, 166, 199.
+TEST(Tricycle, ThirtyHertzUpdatesByUpdateChildsClock) {
+  World w(empty_world());
+  w.spawn(load_urdf_string(tricycle("<updateRate>30</updateRate>"), "tri.urdf"), "tri", at(0, 0, 0));
+  w.step(200);
+  std::vector<uint64_t> ticks;
+  for (const auto& o : w.take_outputs()) ticks.push_back(o->tick);
+  EXPECT_EQ(ticks, (std::vector<uint64_t>{33, 66, 99, 133, 166, 199}));
+}

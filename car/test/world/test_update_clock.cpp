@@ -1,0 +1,49 @@
+// Schedule::update_clock: gazebo_ros's UpdateChild rule (UpdateClock; docs/COMPAT-plugins.md "the update and the
+// wheel ramp"): the call at tick k + 1 (which reads tick k's state) updates when (t - last).Double() > 1 / rate,
+// and then last += common::Time(1 / rate).
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "car_sim/plugin.hpp"
+
+using car_sim::Schedule;
+
+namespace {
+
+std::vector<uint64_t> due_ticks(Schedule s, uint64_t from, uint64_t to) {
+  std::vector<uint64_t> ticks;
+  for (uint64_t k = from; k <= to; ++k)
+    if (s.due(k)) {
+      ticks.push_back(k);
+      s.advance(k);
+    }
+  return ticks;
+}
+
+}  // namespace
+
+// 30 Hz at 1 ms: period 1/30 s, last += 33 333 333 ns. Update 1: (k + 1) ms > 33.333 ms, k = 33. Update 2:
+// (k + 1) ms - 33.333333 ms > 33.333 ms, k + 1 = 67. Update 3: 100 ms - 66.666666 ms = 33.333334 ms > 33.3333333 ms,
+// k = 99; then 133 (134 - 99.999999 > 33.3333333), 166, 199. Whole periods counted from tick 0 would be the ticks
+// ceil(100 k / 3) = 34, 67, 100, ...: one step later.
+TEST(UpdateClockSchedule, ThirtyHertzUpdatesAtTheFirstCallPastEachPeriod) {
+  EXPECT_EQ(due_ticks(Schedule::update_clock(30, 0.001, 0), 1, 200), (std::vector<uint64_t>{33, 66, 99, 133, 166, 199}));
+}
+
+// 100 Hz: t - last is exactly 0.01 at tick k = 9 (not > 0.01), so ticks 10, 20, 30, ... as the counting schedule.
+TEST(UpdateClockSchedule, AWholeNumberOfStepsUpdatesEveryPeriod) {
+  EXPECT_EQ(due_ticks(Schedule::update_clock(100, 0.001, 0), 1, 50), (std::vector<uint64_t>{10, 20, 30, 40, 50}));
+}
+
+// A restart (a world reset at tick 1000) starts last at the reset's time: 1033, 1066, 1099.
+TEST(UpdateClockSchedule, ARestartStartsTheClockAtItsTick) {
+  Schedule s = Schedule::update_clock(30, 0.001, 0);
+  s.restart(1000);
+  EXPECT_EQ(due_ticks(s, 1001, 1100), (std::vector<uint64_t>{1033, 1066, 1099}));
+}
+
+// updateRate 0: period 0, and t - last > 0 at every call.
+TEST(UpdateClockSchedule, RateZeroUpdatesEveryStep) {
+  EXPECT_EQ(due_ticks(Schedule::update_clock(0, 0.001, 0), 1, 4), (std::vector<uint64_t>{1, 2, 3, 4}));
+}
