@@ -128,10 +128,17 @@ class Schedule {
   static Schedule absolute(double period, int64_t offset_ns, double dt);
   // Due by UpdateClock(rate)'s rule, the clock started at start_tick and again at each restart.
   static Schedule update_clock(double rate, double dt, uint64_t start_tick);
+  // The rate control of gazebo_ros's p3d, imu (model plug-in) and ft_sensor: the call at tick k's sim time t
+  // publishes unless (t - last).Double() < 1.0 / rate, and then last = t. last starts at start_tick's time, or at 0
+  // (from_zero: ft_sensor's default-constructed last_time_); a restart sets it the same way. rate <= 0: every step.
+  // At 30 Hz and 1 ms that is every 34 ms (29.4 Hz), as upstream.
+  static Schedule since_last(double rate, double dt, uint64_t start_tick, bool from_zero);
   bool due(uint64_t tick) const {
     switch (mode_) {
       case Mode::Absolute: return absolute_due(tick);
       case Mode::Clock: return clock_.due(tick, dt_);
+      case Mode::SinceLast:
+        return !(period_ > 0.0) || !(common_time_double(tick_time_ns(tick, dt_) - offset_ns_) < period_);
       default: return tick >= next_;
     }
   }
@@ -141,13 +148,14 @@ class Schedule {
 
  private:
   bool absolute_due(uint64_t tick) const;
-  enum class Mode { Count, Absolute, Clock };
+  enum class Mode { Count, Absolute, Clock, SinceLast };
   Mode mode_ = Mode::Count;
   uint64_t num_ = 1, den_ = 1;  // period [ticks] = num / den
   uint64_t start_ = 0, k_ = 0;
   uint64_t next_ = 1;
-  double period_ = 0.0, dt_ = 0.0;  // [s]
-  int64_t offset_ns_ = 0;
+  double period_ = 0.0, dt_ = 0.0;  // [s]; SinceLast: 1.0 / rate
+  int64_t offset_ns_ = 0;           // [ns] Absolute: the grid's offset; SinceLast: last
+  bool from_zero_ = false;
   UpdateClock clock_;
 };
 

@@ -67,8 +67,19 @@ Schedule Schedule::update_clock(double rate, double dt, uint64_t start_tick) {
   return s;
 }
 
+Schedule Schedule::since_last(double rate, double dt, uint64_t start_tick, bool from_zero) {
+  Schedule s;
+  s.mode_ = Mode::SinceLast;
+  s.period_ = rate > 0 ? 1.0 / rate : 0.0;
+  s.dt_ = dt;
+  s.from_zero_ = from_zero;
+  s.restart(start_tick);
+  return s;
+}
+
 void Schedule::restart(uint64_t start_tick) {
   if (mode_ == Mode::Clock) clock_.start(start_tick, dt_);
+  if (mode_ == Mode::SinceLast) offset_ns_ = from_zero_ ? 0 : tick_time_ns(start_tick, dt_);
   start_ = start_tick;
   k_ = 1;
   next_ = start_ + (k_ * num_ + den_ - 1) / den_;
@@ -77,6 +88,10 @@ void Schedule::restart(uint64_t start_tick) {
 void Schedule::advance(uint64_t tick) {
   if (mode_ == Mode::Clock) {
     clock_.since(tick, dt_);
+    return;
+  }
+  if (mode_ == Mode::SinceLast) {
+    offset_ns_ = tick_time_ns(tick, dt_);
     return;
   }
   ++k_;

@@ -47,3 +47,21 @@ TEST(UpdateClockSchedule, ARestartStartsTheClockAtItsTick) {
 TEST(UpdateClockSchedule, RateZeroUpdatesEveryStep) {
   EXPECT_EQ(due_ticks(Schedule::update_clock(0, 0.001, 0), 1, 4), (std::vector<uint64_t>{1, 2, 3, 4}));
 }
+
+// Schedule::since_last, the rate control of p3d, the imu model plug-in and ft_sensor: a call at tick k's time t
+// publishes unless (t - last).Double() < 1.0 / rate, then last = t. At 30 Hz and 1 ms 0.033 < 0.0333 holds and 0.034
+// does not: every 34 ms (29.4 Hz, not 30).
+TEST(SinceLastSchedule, ThirtyHertzPublishesEveryThirtyFourMilliseconds) {
+  EXPECT_EQ(due_ticks(Schedule::since_last(30, 0.001, 0, false), 1, 200),
+            (std::vector<uint64_t>{34, 68, 102, 136, 170}));
+}
+
+// 50 Hz: 20 000 000 ns as a double is 0.02 == 1.0 / 50, not less: every 20 ms.
+TEST(SinceLastSchedule, FiftyHertzPublishesEveryTwentyMilliseconds) {
+  EXPECT_EQ(due_ticks(Schedule::since_last(50, 0.001, 0, false), 1, 80), (std::vector<uint64_t>{20, 40, 60, 80}));
+}
+
+// from_zero (ft_sensor's last_time_ of 0): started at tick 500 at 10 Hz, the first call is already 0.501 s past 0.
+TEST(SinceLastSchedule, FromZeroPublishesAtTheFirstCallAfterALateStart) {
+  EXPECT_EQ(due_ticks(Schedule::since_last(10, 0.001, 500, true), 501, 750), (std::vector<uint64_t>{501, 601, 701}));
+}

@@ -18,6 +18,10 @@ class FtSensor : public Plugin {
         rng0_(plugin_rng(seed, robot, c.name)), rng_(rng0_) {}
 
   double update_rate() const override { return rate_; }
+  // ft_sensor's rate control: last_time_ starts at 0 (never set at the load), set by each publication
+  Schedule schedule(double dt, uint64_t start_tick) const override {
+    return Schedule::since_last(rate_, dt, start_tick, true);
+  }
   void configure(RobotHandle& robot) override {
     joint_ = robot.joint(joint_name_);
     robot.enable_joint_wrench(joint_);

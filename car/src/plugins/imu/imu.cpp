@@ -75,7 +75,7 @@ class Imu : public Plugin {
  public:
   Imu(const PluginConfig& c, const std::string& robot, uint64_t seed)
       : link_(c.link), sensor_pose_(c.sensor_pose),
-        rate_(c.sensor.empty() ? c.number("updateRate") : c.number("update_rate")),
+        rate_(c.sensor.empty() ? c.number("updateRate") : c.number("update_rate")), model_plugin_(c.sensor.empty()),
         stddev_(c.number("gaussianNoise")),
         rng0_(plugin_rng(seed, robot, c.sensor.empty() ? c.name : c.sensor)), rng_(rng0_) {
     proto_.sensor = c.sensor.empty() ? c.name : c.sensor;
@@ -99,6 +99,11 @@ class Imu : public Plugin {
   }
 
   double update_rate() const override { return rate_; }
+  // the model plug-in (libgazebo_ros_imu.so): its rate control, last from the load, set by each publication; the
+  // sensor's own update_rate otherwise
+  Schedule schedule(double dt, uint64_t start_tick) const override {
+    return model_plugin_ ? Schedule::since_last(rate_, dt, start_tick, false) : Schedule(rate_, dt, start_tick);
+  }
   void reset() override {
     rng_ = rng0_;
     count_ = 0;
@@ -147,7 +152,9 @@ class Imu : public Plugin {
  private:
   std::string link_;
   Eigen::Isometry3d sensor_pose_;
-  double rate_, stddev_;
+  double rate_;
+  bool model_plugin_;  // libgazebo_ros_imu.so (no <sensor>)
+  double stddev_;
   std::mt19937_64 rng0_, rng_;  // the noise generator as seeded, and as it runs
   ImuOut proto_;
   AxisNoise noise_[2][3];  // [angular velocity, linear acceleration][x, y, z]

@@ -29,6 +29,10 @@ class P3d : public Plugin {
   }
 
   double update_rate() const override { return rate_; }
+  // p3d's rate control: last from the load, set by each publication
+  Schedule schedule(double dt, uint64_t start_tick) const override {
+    return Schedule::since_last(rate_, dt, start_tick, false);
+  }
   void reset() override { rng_ = rng0_; }
 
   void post_physics(const StepContext&, const RobotHandle& robot, OutputQueue* out) override {

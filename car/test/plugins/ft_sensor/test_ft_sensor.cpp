@@ -10,8 +10,8 @@ using namespace car_sim;
 namespace {
 
 // A 10 kg base box on the ground; on its top (z = 0.2 m) a revolute joint about z carries a 1 kg arm whose centre
-// of mass is at (0, 0.2, 0.05) m in the arm's frame (no collision).
-std::unique_ptr<World> arm_world(const std::string& keys) {
+// of mass is at (0, 0.2, 0.05) m in the arm's frame (no collision); spawned after steps_before_spawn steps.
+std::unique_ptr<World> arm_world(const std::string& keys, uint64_t steps_before_spawn = 0) {
   const std::string xml = R"(<robot name="arm">
   <link name="base">
     <inertial><mass value="10"/><origin xyz="0 0 0.1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>
@@ -26,6 +26,7 @@ std::unique_ptr<World> arm_world(const std::string& keys) {
                           keys + R"(</plugin></gazebo>
 </robot>)";
   auto w = std::make_unique<World>(empty_world());
+  w->step(steps_before_spawn);
   w->spawn(load_urdf_string(xml, "arm.urdf"), "arm", at(0, 0, 0));
   return w;
 }
@@ -64,4 +65,15 @@ TEST(FtSensor, UnknownJointIsAnError) {
               std::string::npos)
         << e.what();
   }
+}
+
+// ft_sensor's last_time_ starts at 0, not at the load: at 10 Hz, spawned at tick 250, its first call (251 ms) is
+// more than 0.1 s past 0 and publishes, then every 100 ms: 251, 351, 451.
+TEST(FtSensor, ASpawnAfterTimeZeroPublishesAtItsFirstCall) {
+  auto w = arm_world("<updateRate>10</updateRate>", 250);
+  w->set_plugin_active("arm", "ft", true);
+  w->step(250);
+  std::vector<uint64_t> ticks;
+  for (const auto& o : w->take_outputs()) ticks.push_back(o->tick);
+  EXPECT_EQ(ticks, (std::vector<uint64_t>{251, 351, 451}));
 }

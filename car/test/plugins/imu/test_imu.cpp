@@ -47,3 +47,18 @@ TEST(Imu, TurningOnTheSpotReadsTheYawRate) {
   EXPECT_NEAR(imus.back().angular_velocity.z(), 1.0, 0.02);
   EXPECT_EQ(imus.size(), 200u);  // 100 Hz for 2 s
 }
+
+// The model plug-in libgazebo_ros_imu.so has p3d's rate control: at 30 Hz every 34 ms (test_update_clock.cpp).
+TEST(Imu, ModelPluginAtThirtyHertzIsEveryThirtyFourMilliseconds) {
+  std::string xml = car_xml(false);
+  xml.insert(xml.rfind("</robot>"),
+             "<gazebo><plugin name=\"imu\" filename=\"libgazebo_ros_imu.so\"><bodyName>base_link</bodyName>"
+             "<topicName>imu</topicName><updateRate>30</updateRate></plugin></gazebo>");
+  World w(empty_world());
+  w.spawn(load_urdf_string(xml, "car"), "mycar", Eigen::Isometry3d::Identity());
+  w.set_plugin_active("mycar", "imu", true);
+  w.step(200);
+  std::vector<uint64_t> ticks;
+  for (const ImuOut& m : w.take_outputs<ImuOut>()) ticks.push_back(m.tick);
+  EXPECT_EQ(ticks, (std::vector<uint64_t>{34, 68, 102, 136, 170}));
+}

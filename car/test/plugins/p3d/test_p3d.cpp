@@ -93,3 +93,31 @@ TEST(P3d, UnknownFrameIsAnError) {
         << e.what();
   }
 }
+
+// Nobody subscribed until tick 105: car keeps the grid from the load (20, 40, ...) while the plug-in is off, so the
+// first message is at 120. Upstream's p3d leaves last alone while nobody subscribes and would publish at the first
+// call after the subscription; car learns of a subscription only within 50 steps (the node's poll), so it does not
+// follow that phase (docs/COMPAT-plugins.md, p3d "When").
+TEST(P3d, KeepsItsGridWhileNobodySubscribes) {
+  auto w = test_support::world_with_car(false);
+  w->attach_plugin("mycar", p3d({{"updateRate", "50"}}));
+  w->step(105);
+  w->set_plugin_active("mycar", "truth", true);
+  w->step(95);
+  const OutputQueue q = w->take_outputs();
+  std::vector<uint64_t> ticks;
+  for (const P3dOut* o : p3d_outputs(q)) ticks.push_back(o->tick);
+  EXPECT_EQ(ticks, (std::vector<uint64_t>{120, 140, 160, 180, 200}));
+}
+
+// At 30 Hz upstream's rate control publishes every 34 ms (test_update_clock.cpp): 34, 68, 102, 136, 170.
+TEST(P3d, ThirtyHertzIsEveryThirtyFourMilliseconds) {
+  auto w = test_support::world_with_car(false);
+  w->attach_plugin("mycar", p3d({{"updateRate", "30"}}));
+  w->set_plugin_active("mycar", "truth", true);
+  w->step(200);
+  const OutputQueue q = w->take_outputs();
+  std::vector<uint64_t> ticks;
+  for (const P3dOut* o : p3d_outputs(q)) ticks.push_back(o->tick);
+  EXPECT_EQ(ticks, (std::vector<uint64_t>{34, 68, 102, 136, 170}));
+}
