@@ -220,7 +220,12 @@ struct OutputPort {
 };
 
 // Gazebo's common::Time(double) in whole nanoseconds: floor for the seconds, the rest rounded to the nanosecond.
+// Beyond +-4.6e9 s (a period of a rate such as 1e-300 Hz, which never elapses) it saturates at +-4.6e18 ns, where
+// common::Time's int32 seconds would overflow; NaN gives the upper bound.
 inline int64_t common_time_ns(double seconds) {
+  constexpr int64_t kMaxNs = 4600000000000000000;
+  if (!(seconds < 4.6e9)) return kMaxNs;
+  if (!(seconds > -4.6e9)) return -kMaxNs;
   const double whole = std::floor(seconds);
   return static_cast<int64_t>(whole) * 1000000000 + std::llround((seconds - whole) * 1e9);
 }

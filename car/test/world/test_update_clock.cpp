@@ -65,3 +65,11 @@ TEST(SinceLastSchedule, FiftyHertzPublishesEveryTwentyMilliseconds) {
 TEST(SinceLastSchedule, FromZeroPublishesAtTheFirstCallAfterALateStart) {
   EXPECT_EQ(due_ticks(Schedule::since_last(10, 0.001, 500, true), 501, 750), (std::vector<uint64_t>{501, 601, 701}));
 }
+
+// A rate of 1e-300 Hz: its period (1e300 s) saturates at 4.6e18 ns instead of an undefined conversion, and the
+// clock never comes due.
+TEST(UpdateClockSchedule, ATinyRateNeverComesDue) {
+  EXPECT_EQ(car_sim::common_time_ns(1e300), 4600000000000000000);
+  EXPECT_EQ(car_sim::common_time_ns(-1e300), -4600000000000000000);
+  EXPECT_TRUE(due_ticks(Schedule::update_clock(1e-300, 0.001, 0), 1, 1000).empty());
+}
