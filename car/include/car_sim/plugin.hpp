@@ -138,7 +138,7 @@ class Schedule {
       case Mode::Absolute: return absolute_due(tick);
       case Mode::Clock: return clock_.due(tick, dt_);
       case Mode::SinceLast:
-        return !(period_ > 0.0) || !(common_time_double(tick_time_ns(tick, dt_) - offset_ns_) < period_);
+        return !(period_ > 0.0) || !(common_time_double(tick_time_ns(tick, dt_) - last_ns_) < period_);
       default: return tick >= next_;
     }
   }
@@ -154,7 +154,8 @@ class Schedule {
   uint64_t start_ = 0, k_ = 0;
   uint64_t next_ = 1;
   double period_ = 0.0, dt_ = 0.0;  // [s]; SinceLast: 1.0 / rate
-  int64_t offset_ns_ = 0;           // [ns] Absolute: the grid's offset; SinceLast: last
+  int64_t offset_ns_ = 0;           // [ns] Absolute: the grid's offset
+  int64_t last_ns_ = 0;             // [ns] SinceLast: the last publication's time
   bool from_zero_ = false;
   UpdateClock clock_;
 };
@@ -237,7 +238,8 @@ class Plugin {
   // [Hz] of post_physics; 0 = every step.
   virtual double update_rate() const = 0;
   // When post_physics is due, for a plug-in configured at start_tick with step dt [s]: whole periods of
-  // update_rate() from start_tick unless the kind keeps another clock (Schedule::absolute).
+  // update_rate() from start_tick unless the kind keeps upstream's own clock (Schedule::absolute, update_clock,
+  // since_last).
   virtual Schedule schedule(double dt, uint64_t start_tick) const { return Schedule(update_rate(), dt, start_tick); }
   // Joints this plug-in drives. Asked before the robot's physics is built (a driven caster keeps its friction).
   virtual std::vector<std::string> driven_joints() const { return {}; }

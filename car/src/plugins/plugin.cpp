@@ -79,7 +79,7 @@ Schedule Schedule::since_last(double rate, double dt, uint64_t start_tick, bool 
 
 void Schedule::restart(uint64_t start_tick) {
   if (mode_ == Mode::Clock) clock_.start(start_tick, dt_);
-  if (mode_ == Mode::SinceLast) offset_ns_ = from_zero_ ? 0 : tick_time_ns(start_tick, dt_);
+  if (mode_ == Mode::SinceLast) last_ns_ = from_zero_ ? 0 : tick_time_ns(start_tick, dt_);
   start_ = start_tick;
   k_ = 1;
   next_ = start_ + (k_ * num_ + den_ - 1) / den_;
@@ -91,7 +91,7 @@ void Schedule::advance(uint64_t tick) {
     return;
   }
   if (mode_ == Mode::SinceLast) {
-    offset_ns_ = tick_time_ns(tick, dt_);
+    last_ns_ = tick_time_ns(tick, dt_);
     return;
   }
   ++k_;

@@ -115,9 +115,10 @@ inline void finish_timer(ResolveContext& ctx) {
     if (c.param(k).from_default) continue;
     const std::string& t = c.text(k);
     if (SdfTime::whole(t)) continue;
-    const int64_t ns = SdfTime(t).ns();
+    const SdfTime as_read(t);
+    const int64_t ns = as_read.ns();
     char read[64];
-    std::snprintf(read, sizeof read, "%g s", SdfTime(t).seconds());
+    std::snprintf(read, sizeof read, "%g s", as_read.seconds());
     std::string m = "<" + std::string(k) + "> '" + t + "' is read as sdf::Time 'SEC NSEC' by hector's UpdateTimer: " + read;
     const bool period = std::string(k) == "updatePeriod";
     if (period && ns == 0) m += ", so the plug-in updates every step";
