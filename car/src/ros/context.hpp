@@ -27,6 +27,15 @@ class NodeContext {
   // The sim time of a tick.
   virtual ros::Time stamp(uint64_t tick) const = 0;
 
+  // A port's publisher. Each subscriber's coming and going reaches the node through roscpp's connect callbacks
+  // (run by the node's spinOnce between steps), so a lazy plug-in is switched on before the next step, as
+  // gazebo_ros's sensors switch on from their connect callbacks.
+  template <class M>
+  ros::Publisher advertise(const std::string& topic, uint32_t queue) {
+    const auto changed = [this](const ros::SingleSubscriberPublisher&) { listeners_changed(); };
+    return nh().advertise<M>(topic, queue, changed, changed);
+  }
+
   // Publishes msg on pub (a ros::Publisher or image_transport::Publisher) from the node's publishing thread:
   // the message is moved there, serialised and sent while the physics steps on; messages go out in the order
   // they were posted (src/ros/publish_queue.hpp).
@@ -67,6 +76,8 @@ class NodeContext {
   virtual void post(std::function<void()> job, size_t bytes) = 0;
   // A message was posted on topic while it had `subscribers` subscribers (only while watch_published_).
   virtual void published(const std::string& topic, uint32_t subscribers) {}
+  // A port's publisher gained or lost a subscriber.
+  virtual void listeners_changed() {}
   bool watch_published_ = false;
 
  private:

@@ -225,8 +225,6 @@ void SimNode::publish_outputs() {
     it->second.outputs->publish(std::move(o), *this);
     if (it->second.polled) it->second.polled->poll();
   }
-  // lazy plug-ins compute only while someone listens; look every 50 steps
-  if (tick % 50 == 0) update_activity();
   if (tick % joint_state_period_ == 0) {
     for (auto& [name, io] : io_) {
       if (io.joint_states.getNumSubscribers() == 0) continue;
@@ -329,6 +327,8 @@ void SimNode::make_io(const std::string& name) {
     io.plugins.push_back(std::move(pio));
   }
   io_[name] = std::move(io);
+  // a port that only sends a transform is listened to from the start
+  update_activity();
   // the new plug-ins subscribed after lockstep's answers: subscribe those again, to come last
   lockstep_.resubscribe();
 }
@@ -343,6 +343,7 @@ void SimNode::ports_changed(const std::string& robot, const std::string& plugin)
     ROS_DEBUG("car: %s: %s '%s' now offers %s; input %s", robot.c_str(), pio.info.config.kind.c_str(), plugin.c_str(),
               offers.c_str(), inputs.c_str());
   }
+  update_activity();
   lockstep_.resubscribe();
 }
 

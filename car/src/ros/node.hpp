@@ -74,6 +74,7 @@ class SimNode : public NodeContext {
  protected:
   void post(std::function<void()> job, size_t bytes) override { publisher_.post(std::move(job), bytes); }
   void published(const std::string& topic, uint32_t subscribers) override { lockstep_.published(topic, subscribers); }
+  void listeners_changed() override { update_activity(); }
 
  private:
   // The bridge of one plug-in instance of a robot: its input, output and service ports.
@@ -93,6 +94,8 @@ class SimNode : public NodeContext {
   void log_world(const std::string& file);
   void publish_clock();
   void publish_outputs();
+  // Switches the lazy plug-ins on or off, and hands each the output parts someone takes: at a robot's spawn, when a
+  // plug-in's ports change and when a port's subscribers change (roscpp's connect callbacks).
   void update_activity();
   // The bridge for a spawned robot's plug-ins, plus the ground-truth publisher the node attaches.
   void make_io(const std::string& robot);

@@ -223,7 +223,7 @@ std::string OutputPorts::setup(const car_sim::PluginInfo& plugin, const car_sim:
     }
     switch (op.type) {
       case T::Odometry:
-        if (!op.topic.empty()) p.pub = node.nh().advertise<nav_msgs::Odometry>(op.topic, op.queue);
+        if (!op.topic.empty()) p.pub = node.advertise<nav_msgs::Odometry>(op.topic, op.queue);
         else
           ROS_WARN("car: %s: %s: no odometry topic at all (like gazebo_ros with publishTf false)", plugin.robot.c_str(),
                    plugin.config.name.c_str());
@@ -231,7 +231,7 @@ std::string OutputPorts::setup(const car_sim::PluginInfo& plugin, const car_sim:
             p.child_frame + (op.tf != car_sim::TfOrder::None ? ", TF" : "") + ")");
         break;
       case T::JointStates:
-        p.pub = node.nh().advertise<sensor_msgs::JointState>(op.topic, op.queue);
+        p.pub = node.advertise<sensor_msgs::JointState>(op.topic, op.queue);
         add("joint states " + op.topic);
         break;
       case T::JointTransforms: add("wheel TF"); break;
@@ -240,23 +240,23 @@ std::string OutputPorts::setup(const car_sim::PluginInfo& plugin, const car_sim:
       case T::DepthImage:
       case T::DepthCloud: add(setup_image(p, node)); break;
       // ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
-      case T::LaserScan: p.pub = node.nh().advertise<sensor_msgs::LaserScan>(op.topic, op.queue); break;
-      case T::PointCloud: p.pub = node.nh().advertise<sensor_msgs::PointCloud>(op.topic, op.queue); break;
-      case T::LidarCloud: p.pub = node.nh().advertise<sensor_msgs::PointCloud2>(op.topic, op.queue); break;
-      case T::Range: p.pub = node.nh().advertise<sensor_msgs::Range>(op.topic, op.queue); break;
-      case T::Imu: p.pub = node.nh().advertise<sensor_msgs::Imu>(op.topic, op.queue); break;
-      case T::NavSatFix: p.pub = node.nh().advertise<sensor_msgs::NavSatFix>(op.topic, op.queue); break;
-      case T::Vector3: p.pub = node.nh().advertise<geometry_msgs::Vector3Stamped>(op.topic, op.queue); break;
-      case T::MagneticField: p.pub = node.nh().advertise<sensor_msgs::MagneticField>(op.topic, op.queue); break;
-      case T::Wrench: p.pub = node.nh().advertise<geometry_msgs::WrenchStamped>(op.topic, op.queue); break;
-      case T::Contacts: p.pub = node.nh().advertise<gazebo_msgs::ContactsState>(op.topic, op.queue); break;
+      case T::LaserScan: p.pub = node.advertise<sensor_msgs::LaserScan>(op.topic, op.queue); break;
+      case T::PointCloud: p.pub = node.advertise<sensor_msgs::PointCloud>(op.topic, op.queue); break;
+      case T::LidarCloud: p.pub = node.advertise<sensor_msgs::PointCloud2>(op.topic, op.queue); break;
+      case T::Range: p.pub = node.advertise<sensor_msgs::Range>(op.topic, op.queue); break;
+      case T::Imu: p.pub = node.advertise<sensor_msgs::Imu>(op.topic, op.queue); break;
+      case T::NavSatFix: p.pub = node.advertise<sensor_msgs::NavSatFix>(op.topic, op.queue); break;
+      case T::Vector3: p.pub = node.advertise<geometry_msgs::Vector3Stamped>(op.topic, op.queue); break;
+      case T::MagneticField: p.pub = node.advertise<sensor_msgs::MagneticField>(op.topic, op.queue); break;
+      case T::Wrench: p.pub = node.advertise<geometry_msgs::WrenchStamped>(op.topic, op.queue); break;
+      case T::Contacts: p.pub = node.advertise<gazebo_msgs::ContactsState>(op.topic, op.queue); break;
       case T::Transform: add("TF " + p.frame + " -> " + p.child_frame); break;
       // ---- ros_control's controllers ----
       case T::ControllerState:
-        p.pub = node.nh().advertise<control_msgs::JointControllerState>(op.topic, op.queue);
+        p.pub = node.advertise<control_msgs::JointControllerState>(op.topic, op.queue);
         break;
       case T::TrajectoryState:
-        p.pub = node.nh().advertise<control_msgs::JointTrajectoryControllerState>(op.topic, op.queue);
+        p.pub = node.advertise<control_msgs::JointTrajectoryControllerState>(op.topic, op.queue);
         break;
       case T::GoalResult: break;  // the action server of the input port on the same namespace answers
     }

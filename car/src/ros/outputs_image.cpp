@@ -17,16 +17,16 @@ std::string OutputPorts::setup_image(Port& p, NodeContext& node) {
   const car_sim::OutputPort& op = p.port;
   switch (op.type) {
     case T::Image:
-      p.pub = node.nh().advertise<sensor_msgs::Image>(op.topic, op.queue);
+      p.pub = node.advertise<sensor_msgs::Image>(op.topic, op.queue);
       return "image " + op.topic;
     case T::CameraInfo:
-      p.pub = node.nh().advertise<sensor_msgs::CameraInfo>(op.topic, op.queue);
+      p.pub = node.advertise<sensor_msgs::CameraInfo>(op.topic, op.queue);
       return "camera_info " + op.topic;
     case T::DepthImage:
-      p.pub = node.nh().advertise<sensor_msgs::Image>(op.topic, op.queue);
+      p.pub = node.advertise<sensor_msgs::Image>(op.topic, op.queue);
       return std::string("depth image ") + (op.image.millimetres ? "(16UC1) " : "") + op.topic;
     case T::DepthCloud:
-      p.pub = node.nh().advertise<sensor_msgs::PointCloud2>(op.topic, op.queue);
+      p.pub = node.advertise<sensor_msgs::PointCloud2>(op.topic, op.queue);
       return "cloud " + op.topic;
     default: return "";
   }

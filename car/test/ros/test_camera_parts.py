@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """rostest: the Kinect's depth image with nobody on its colour image or cloud (the renderer then makes depth alone),
-and its colour image once subscribed, facing box_house's Wall_2 (values as in test_sensors)."""
+and its colour image once subscribed, facing box_house's Wall_2 (values as in test_sensors); and a lazy plug-in
+switched on by its subscriber's connect callback before the next step."""
 import unittest
 
 import numpy as np
@@ -8,6 +9,7 @@ import rospy
 import rostest
 from gazebo_msgs.msg import ModelState
 from gazebo_msgs.srv import SetModelState
+from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Image
 
 import simtest
@@ -58,6 +60,16 @@ class CameraPartsTest(unittest.TestCase):
                                                 round(0.24 * 0.4 * 255)])
         d = np.frombuffer(self.depth.msgs[-1].data, np.float32).reshape(480, 640)
         self.assertAlmostEqual(float(d[240, 320]), WALL2_X, delta=1e-3)
+
+    def test_a_lazy_plugin_is_on_from_the_first_step_after_its_subscriber_came(self):
+        """car's ground truth, a p3d at ~model_states_rate (100 Hz) that runs only while subscribed, subscribed while
+        paused at t = 0: its first message is its grid's first, t = 0.01 s (`(t - last) < 1/rate` is false from
+        t = 0.01 on). The node switched it on from roscpp's connect callback before the first step; a node that
+        looked at its publishers every 50 steps sent the first at 0.06 s."""
+        truth = Recorder('/gazebo/ground_truth/mycar', Odometry)
+        truth.wait_connected()
+        self.run_at(0.0, 0.1, [truth])
+        self.assertEqual(truth.msgs[0].header.stamp, rospy.Time(0, 10000000))
 
 
 if __name__ == '__main__':

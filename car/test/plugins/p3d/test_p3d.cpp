@@ -96,8 +96,8 @@ TEST(P3d, UnknownFrameIsAnError) {
 
 // Nobody subscribed until tick 105: car keeps the grid from the load (20, 40, ...) while the plug-in is off, so the
 // first message is at 120. Upstream's p3d leaves last alone while nobody subscribes and would publish at the first
-// call after the subscription; car learns of a subscription only within 50 steps (the node's poll), so it does not
-// follow that phase (docs/COMPAT-plugins.md, p3d "When").
+// call after the subscription; car keeps the grid so that a run's stamps do not depend on when a subscriber came
+// (docs/COMPAT-plugins.md, p3d "When").
 TEST(P3d, KeepsItsGridWhileNobodySubscribes) {
   auto w = test_support::world_with_car(false);
   w->attach_plugin("mycar", p3d({{"updateRate", "50"}}));
