@@ -344,6 +344,11 @@ struct Physics::Impl {
 
   void add_world_model(const WorldModelDesc& m);
   Eigen::Isometry3d dyn_model_pose(const DynModel& dm) const;
+  // The dynamic model whose first link is dm's canonical link, as Gazebo 11's Model::LoadLinks picks it: dm's own
+  // first link, or, for a model with no link of its own (it only holds nested models), the first link of its
+  // first nested model that has one (nested models follow their parent in dyn_models, depth first). nullptr when
+  // none of them has a dynamic link.
+  const DynModel* canonical(const DynModel& dm) const;
   void build_rays();
 };
 
@@ -805,6 +810,14 @@ void Physics::Impl::add_world_model(const WorldModelDesc& m) {
   dyn_models.push_back(std::move(dm));
 }
 
+const Physics::Impl::DynModel* Physics::Impl::canonical(const DynModel& dm) const {
+  if (!dm.bodies.empty()) return &dm;
+  const std::string prefix = dm.name + "::";
+  for (const auto& other : dyn_models)
+    if (!other.bodies.empty() && other.name.compare(0, prefix.size(), prefix) == 0) return &other;
+  return nullptr;
+}
+
 Eigen::Isometry3d Physics::Impl::dyn_model_pose(const DynModel& dm) const {
   // model frame from the canonical (first) link
   const Eigen::Isometry3d com = eig(dm.bodies[0]->getWorldTransform());
@@ -926,11 +939,27 @@ std::optional<ModelState> Physics::world_model_state(const std::string& name) co
   for (const auto& dm : impl_->dyn_models) {
     if (dm.name != name) continue;
     ModelState s;
-    const btRigidBody* rb = dm.bodies[0];
+    const Impl::DynModel* c = impl_->canonical(dm);
+    if (!c) {
+      // no dynamic link anywhere below: the model frame where the world put it, at rest
+      s.pose = dm.desc->pose;
+      return s;
+    }
+    const btRigidBody* rb = c->bodies[0];
     const Eigen::Isometry3d com = eig(rb->getWorldTransform());
-    s.pose = impl_->dyn_model_pose(dm);
+    if (c == &dm) {
+      s.pose = impl_->dyn_model_pose(dm);
+      s.angular = eig(rb->getAngularVelocity());
+      s.linear = eig(rb->getLinearVelocity()) + s.angular.cross(s.pose.translation() - com.translation());
+      return s;
+    }
+    // a model with only nested models: its frame keeps its load-time offset from the canonical link (world
+    // frame), and its twist is that link's (Model::WorldLinearVel: the canonical link's, at the link's origin)
+    const Eigen::Isometry3d link = impl_->dyn_model_pose(*c) * c->desc->links[0].pose;
+    const Eigen::Isometry3d link_in_model = dm.desc->pose.inverse() * c->desc->pose * c->desc->links[0].pose;
+    s.pose = link * link_in_model.inverse();
     s.angular = eig(rb->getAngularVelocity());
-    s.linear = eig(rb->getLinearVelocity()) + s.angular.cross(s.pose.translation() - com.translation());
+    s.linear = eig(rb->getLinearVelocity()) + s.angular.cross(link.translation() - com.translation());
     return s;
   }
   return std::nullopt;
@@ -939,6 +968,19 @@ std::optional<ModelState> Physics::world_model_state(const std::string& name) co
 bool Physics::set_world_model_state(const std::string& name, const ModelState& st) {
   for (auto& dm : impl_->dyn_models) {
     if (dm.name != name) continue;
+    // Gazebo 11's Entity::SetWorldPoseModel: the nested models move with the model, keeping their poses relative
+    // to it; gazebo_ros's twist (Model::SetLinearVel) goes to the model's own links only
+    const std::optional<ModelState> before = world_model_state(name);
+    const Eigen::Isometry3d moved = st.pose * before->pose.inverse();
+    const std::string prefix = name + "::";
+    for (auto& nested : impl_->dyn_models) {
+      if (nested.name.compare(0, prefix.size(), prefix) != 0) continue;
+      for (btRigidBody* b : nested.bodies) {
+        const btTransform T = bt(Eigen::Isometry3d(moved * eig(b->getWorldTransform())));
+        b->setWorldTransform(T);
+        b->getMotionState()->setWorldTransform(T);
+      }
+    }
     for (size_t i = 0; i < dm.bodies.size(); ++i) {
       const Eigen::Isometry3d com = st.pose * dm.desc->links[i].pose * dm.link_to_com[i];
       dm.bodies[i]->setWorldTransform(bt(com));
