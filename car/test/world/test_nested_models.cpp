@@ -57,6 +57,13 @@ TEST(NestedModels, SettingAParentsPoseMovesItsNestedModels) {
   EXPECT_NEAR(board.z(), 3.5, 1e-12);
 }
 
+// World::RemoveModel in Gazebo 11 removes the model entity with its children, nested models among them.
+TEST(NestedModels, DeletingAParentDeletesItsNestedModels) {
+  World w(load_world_string(kShelf, "nested.world"));
+  w.remove("shelf");
+  EXPECT_EQ(w.model_names(), std::vector<std::string>{});
+}
+
 // libsdformat 12 converts an SDF 1.7 link named "body::x" into link x of a nested model body (its 1.7 -> 1.8
 // unflattening), where Gazebo 11 keeps one link named "body::x": car then has a model crate with no link of its
 // own and a model crate::body. Found by fuzz_sdf_world (test/fuzz/regressions/sdf_world/): crate's state read its
