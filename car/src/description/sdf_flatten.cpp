@@ -225,7 +225,9 @@ class Flattener {
 
 // Nested models become top-level models 'parent::child' with composed poses, static when the parent is (the
 // loader's add_model does the same on the DOM). Each pass hoists one level; a parent's nested models land right
-// after it, the last one first.
+// after it, the last one first. A parent left with no <link> is dropped: libsdformat 12 refuses a model without a
+// link, and its nested models hold everything it simulated (the loader keeps it as a model that follows its
+// canonical link, docs/COMPAT-sdf.md 16a; the flat world has no way to say that).
 void hoist_nested(tinyxml2::XMLElement* world, const std::string& file) {
   for (bool changed = true; changed;) {
     changed = false;
@@ -244,6 +246,7 @@ void hoist_nested(tinyxml2::XMLElement* world, const std::string& file) {
         world->InsertAfterChild(m, n);  // moves n out of m
         changed = true;
       }
+      if (!nested.empty() && !m->FirstChildElement("link")) world->DeleteChild(m);
     }
   }
 }

@@ -52,6 +52,16 @@ def test_nested_include_is_hoisted_with_composed_pose(tmp_path):
     assert yaw == pytest.approx(math.pi / 2)
 
 
+def test_a_parent_with_no_link_of_its_own_is_left_out_of_the_flat_world(tmp_path):
+    # libsdformat 12 refuses a model without a link; the hoisted board keeps everything shelf simulated
+    src = tmp_path / 'nested.world'
+    src.write_text('<sdf version="1.7"><world name="w"><model name="shelf"><pose>1 0 0 0 0 0</pose>'
+                   '<model name="board"><pose>0 0 0.5 0 0 0</pose><link name="l"/></model></model></world></sdf>')
+    flat_path = flat(str(src), tmp_path)
+    assert [m.get('name') for m in ET.parse(flat_path).getroot().find('world').findall('model')] == ['shelf::board']
+    assert models_of(_core.load_world_file(flat_path))['shelf::board'] == (False, [1.0, 0.0, 0.5], 0.0)
+
+
 def test_model_config_picks_the_highest_sdf_version(tmp_path):
     world = ET.parse(flat(INCLUDES, tmp_path)).getroot().find('world')
     crate = [m for m in world.findall('model') if m.get('name') == 'crate_a'][0]

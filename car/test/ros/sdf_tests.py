@@ -10,6 +10,7 @@ import unittest
 import rospkg
 import rospy
 import rostest
+from gazebo_msgs.msg import ModelStates
 from gazebo_msgs.srv import GetModelState
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Image, LaserScan
@@ -121,6 +122,26 @@ class SdfWorld(unittest.TestCase):
         self.assertAlmostEqual(m.pose.pose.position.x, 0.0, delta=1e-3)
         self.assertAlmostEqual(m.pose.pose.position.y, 2.0, delta=1e-3)
         self.assertAlmostEqual(m.pose.pose.position.z, 0.25, delta=0.002)
+
+    def test_world_nested_model_follows_its_canonical_link(self):
+        # shelf holds only the nested model board: its frame keeps its load-time offset from board's link, 0.25 m
+        # below it, wherever board rests (docs/COMPAT-sdf.md 16a); the node's model_states carries both
+        ms = rospy.wait_for_message('/gazebo/model_states', ModelStates, timeout=60)
+        shelf, board = (ms.pose[ms.name.index(n)] for n in ('shelf', 'shelf::board'))
+        q = board.orientation
+        u, w = (q.x, q.y, q.z), q.w
+        # (0, 0, -0.25) in board's frame, in the world frame: v + 2w (u x v) + 2 u x (u x v)
+        v = (0.0, 0.0, -0.25)
+
+        def cross(a, b):
+            return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+        uv = cross(u, v)
+        uuv = cross(u, uv)
+        offset = [v[i] + 2 * w * uv[i] + 2 * uuv[i] for i in range(3)]
+        expected = (board.position.x + offset[0], board.position.y + offset[1], board.position.z + offset[2])
+        for got, want in zip((shelf.position.x, shelf.position.y, shelf.position.z), expected):
+            self.assertAlmostEqual(got, want, delta=1e-12)
+        self.assertEqual(shelf.orientation, board.orientation)
 
 
 CASES = {'file': SdfFile, 'database': SdfDatabase, 'world': SdfWorld}
