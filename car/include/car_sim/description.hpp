@@ -48,6 +48,13 @@ struct WorldModelDesc {
   std::vector<WorldLink> links;
 };
 
+// Whether world model `model` is nested (at any depth) in `parent`: hoisted nested models are named
+// "parent::child" (docs/COMPAT-sdf.md 16a).
+inline bool nested_in(const std::string& model, const std::string& parent) {
+  return model.size() > parent.size() + 2 && model.compare(0, parent.size(), parent) == 0 &&
+         model.compare(parent.size(), 2, "::") == 0;
+}
+
 // A world model with plug-ins, sensors or joints: spawned as a robot when the World starts (docs/COMPAT-sdf.md 16).
 struct WorldRobotDesc {
   std::string name;

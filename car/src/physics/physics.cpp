@@ -812,9 +812,8 @@ void Physics::Impl::add_world_model(const WorldModelDesc& m) {
 
 const Physics::Impl::DynModel* Physics::Impl::canonical(const DynModel& dm) const {
   if (!dm.bodies.empty()) return &dm;
-  const std::string prefix = dm.name + "::";
   for (const auto& other : dyn_models)
-    if (!other.bodies.empty() && other.name.compare(0, prefix.size(), prefix) == 0) return &other;
+    if (!other.bodies.empty() && nested_in(other.name, dm.name)) return &other;
   return nullptr;
 }
 
@@ -945,21 +944,23 @@ std::optional<ModelState> Physics::world_model_state(const std::string& name) co
       s.pose = dm.desc->pose;
       return s;
     }
-    const btRigidBody* rb = c->bodies[0];
-    const Eigen::Isometry3d com = eig(rb->getWorldTransform());
+    // the point whose velocity is the model's [m], world frame: the model frame's origin, or, for a model with only
+    // nested models, the canonical link's origin (Model::WorldLinearVel: the canonical link's velocity)
+    Eigen::Vector3d point;
     if (c == &dm) {
       s.pose = impl_->dyn_model_pose(dm);
-      s.angular = eig(rb->getAngularVelocity());
-      s.linear = eig(rb->getLinearVelocity()) + s.angular.cross(s.pose.translation() - com.translation());
-      return s;
+      point = s.pose.translation();
+    } else {
+      // its frame keeps its load-time offset from the canonical link
+      const Eigen::Isometry3d link = impl_->dyn_model_pose(*c) * c->desc->links[0].pose;
+      const Eigen::Isometry3d link_in_model = dm.desc->pose.inverse() * c->desc->pose * c->desc->links[0].pose;
+      s.pose = link * link_in_model.inverse();
+      point = link.translation();
     }
-    // a model with only nested models: its frame keeps its load-time offset from the canonical link (world
-    // frame), and its twist is that link's (Model::WorldLinearVel: the canonical link's, at the link's origin)
-    const Eigen::Isometry3d link = impl_->dyn_model_pose(*c) * c->desc->links[0].pose;
-    const Eigen::Isometry3d link_in_model = dm.desc->pose.inverse() * c->desc->pose * c->desc->links[0].pose;
-    s.pose = link * link_in_model.inverse();
+    const btRigidBody* rb = c->bodies[0];
+    const Eigen::Isometry3d com = eig(rb->getWorldTransform());
     s.angular = eig(rb->getAngularVelocity());
-    s.linear = eig(rb->getLinearVelocity()) + s.angular.cross(link.translation() - com.translation());
+    s.linear = eig(rb->getLinearVelocity()) + s.angular.cross(point - com.translation());
     return s;
   }
   return std::nullopt;
@@ -972,9 +973,8 @@ bool Physics::set_world_model_state(const std::string& name, const ModelState& s
     // to it; gazebo_ros's twist (Model::SetLinearVel) goes to the model's own links only
     const std::optional<ModelState> before = world_model_state(name);
     const Eigen::Isometry3d moved = st.pose * before->pose.inverse();
-    const std::string prefix = name + "::";
     for (auto& nested : impl_->dyn_models) {
-      if (nested.name.compare(0, prefix.size(), prefix) != 0) continue;
+      if (!nested_in(nested.name, name)) continue;
       for (btRigidBody* b : nested.bodies) {
         const btTransform T = bt(Eigen::Isometry3d(moved * eig(b->getWorldTransform())));
         b->setWorldTransform(T);

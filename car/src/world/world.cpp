@@ -285,9 +285,8 @@ void World::remove(const std::string& name) {
   removed_.insert(name);
   impl_->phys->remove_world_model(name);
   // its nested models go with it, as in Gazebo (docs/COMPAT-sdf.md 16a)
-  const std::string prefix = name + "::";
   for (const auto& m : desc_.models)
-    if (m.name.compare(0, prefix.size(), prefix) == 0 && !removed_.count(m.name)) remove(m.name);
+    if (nested_in(m.name, name) && !removed_.count(m.name)) remove(m.name);
 }
 
 void World::step(uint64_t n) {
