@@ -12,9 +12,18 @@
 #include "car_sim/description.hpp"
 #include "fuzz_common.hpp"
 
+namespace {
+// flatten reads a file (includes resolve against its folder): one per process, rewritten for each input and
+// removed when the process exits normally (a crash leaves it, with the input that crashed)
+struct ScratchFile {
+  const std::string path = "/tmp/car-fuzz-flatten-" + std::to_string(getpid()) + ".world";
+  ~ScratchFile() { std::remove(path.c_str()); }
+};
+}  // namespace
+
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  // flatten reads a file (includes resolve against its folder): one per process, rewritten for each input
-  static const std::string path = "/tmp/car-fuzz-flatten-" + std::to_string(getpid()) + ".world";
+  static const ScratchFile scratch;
+  const std::string& path = scratch.path;
   {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
