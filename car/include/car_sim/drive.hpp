@@ -26,7 +26,7 @@ struct OdometryOut : Output {
   std::vector<JointState> joints;                          // the driven wheel joints at that time
   void visit(FieldVisitor& v) const override;
   bool odometry_sample(OdometrySample* s) const override {
-    *s = {pose, linear, angular};
+    *s = {pose, linear, angular, std::nullopt};
     return true;
   }
   const std::vector<JointState>* joint_states_sample() const override { return &joints; }

@@ -116,6 +116,8 @@ class World {
   std::vector<std::string> model_names() const;  // world models first, then robots in spawn order
   bool has_model(const std::string& name) const;
   ModelState model_state(const std::string& name) const;
+  // Pose and twist of the model frame, world frame; its nested models move along. A static model takes the pose
+  // and ignores the twist (docs/COMPAT.md set_model_state). Throws for an unknown model or a non-finite state.
   void set_model_state(const std::string& name, const ModelState& s);
   const RobotInfo& robot(const std::string& name) const;
   std::vector<std::string> robot_names() const;
@@ -179,7 +181,7 @@ class World {
   // A link's pose and twist, world frame (twist of the link frame's origin).
   ModelState link_state(const LinkRef& link) const;
   // Moves the link's whole model rigidly so that the link gets pose and twist (world frame); joint positions and
-  // speeds are kept. Throws for a static model or a non-finite state.
+  // speeds are kept. Throws for an unknown link or a non-finite state.
   void set_link_state(const LinkRef& link, const ModelState& s);
   LinkProperties link_properties(const LinkRef& link) const;
   ModelProperties model_properties(const std::string& model) const;

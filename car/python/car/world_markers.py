@@ -115,7 +115,8 @@ def main(argv=None) -> int:
     rospy.loginfo('world_markers: %s: %d markers of %d models in frame %s%s', path, len(specs), len(desc['models']),
                   frame, ', following moving models while someone subscribes' if follow else '')
     if follow:
-        moving = {s['ns'] for s in specs if not s['static']}
+        # every model may move: a static one too, by set_model_state (docs/COMPAT.md)
+        moving = {s['ns'] for s in specs}
         latest = {}
         from gazebo_msgs.msg import ModelStates
         last_sent = {}

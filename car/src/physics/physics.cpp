@@ -227,7 +227,19 @@ struct Physics::Impl {
     std::vector<Eigen::Isometry3d> link_to_com;
   };
   std::vector<DynModel> dyn_models;            // dynamic world models
-  std::vector<const WorldModelDesc*> static_models;
+  // A static world model: where it is now, and its collisions that move with it (a plane stays where it was
+  // loaded: ODE's plane is not placeable, docs/COMPAT.md set_model_state).
+  struct StaticModel {
+    const WorldModelDesc* desc;
+    Eigen::Isometry3d pose;  // [m], world frame; the description's until set_model_state moves it
+    struct Part {
+      btCollisionObject* object;
+      const WorldLink* link;
+      const WorldCollision* collision;
+    };
+    std::vector<Part> parts;
+  };
+  std::vector<StaticModel> static_models;
   std::map<std::string, std::vector<btCollisionObject*>> model_objects;  // world model -> its Bullet objects
   std::vector<std::unique_ptr<BulletRobot>> robots;
   std::vector<std::string> object_names;       // btCollisionObject user index -> "model/link"
@@ -350,6 +362,8 @@ struct Physics::Impl {
   // none of them has a dynamic link.
   const DynModel* canonical(const DynModel& dm) const;
   void build_rays();
+  // Moves a static model's collisions (not its nested models) to `pose` [m], world frame.
+  void place(StaticModel& sm, const Eigen::Isometry3d& pose);
 };
 
 // ---- robots -------------------------------------------------------------------------------------------------
@@ -732,7 +746,7 @@ Physics::Impl::~Impl() {
 
 void Physics::Impl::add_world_model(const WorldModelDesc& m) {
   if (m.is_static) {
-    static_models.push_back(&m);
+    static_models.push_back({&m, m.pose, {}});
     for (const auto& l : m.links) {
       const Eigen::Isometry3d T_link = m.pose * l.pose;
       for (const auto& c : l.collisions) {
@@ -756,6 +770,7 @@ void Physics::Impl::add_world_model(const WorldModelDesc& m) {
         objects.emplace_back(obj);
         name_object(obj, m.name + "/" + l.name);
         model_objects[m.name].push_back(obj);
+        if (c.shape.type != ShapeType::Plane) static_models.back().parts.push_back({obj, &l, &c});
         // Static objects are asleep, as Bullet makes static rigid bodies (btDiscreteDynamicsWorld::addRigidBody):
         // a pair of a static object and a sleeping body then has no narrow phase and no island manifold (an awake
         // object still wakes nothing static: activate() leaves CF_STATIC_OBJECT alone).
@@ -831,11 +846,14 @@ Eigen::Isometry3d Physics::Impl::dyn_model_pose(const DynModel& dm) const {
 void Physics::Impl::build_rays() {
   rays = std::make_unique<RayScene>();
   moving_ray_bodies.clear();
-  for (const WorldModelDesc* m : static_models) {
-    if (!model_objects.count(m->name)) continue;  // removed
+  for (const StaticModel& sm : static_models) {
+    const WorldModelDesc* m = sm.desc;
     for (const auto& l : m->links) {
       std::vector<std::pair<Shape, Eigen::Isometry3d>> s;
-      for (const auto& c : l.collisions) s.emplace_back(c.shape, m->pose * l.pose * c.shape.origin);
+      for (const auto& c : l.collisions) {
+        const Eigen::Isometry3d& at = c.shape.type == ShapeType::Plane ? m->pose : sm.pose;
+        s.emplace_back(c.shape, at * l.pose * c.shape.origin);
+      }
       if (!s.empty()) rays->add_body(s, sdf_look(l));
     }
   }
@@ -902,6 +920,9 @@ void Physics::remove_world_model(const std::string& name) {
   impl_->model_objects.erase(name);
   auto& dms = impl_->dyn_models;
   dms.erase(std::remove_if(dms.begin(), dms.end(), [&](const Impl::DynModel& x) { return x.name == name; }), dms.end());
+  auto& sms = impl_->static_models;
+  sms.erase(std::remove_if(sms.begin(), sms.end(), [&](const Impl::StaticModel& x) { return x.desc->name == name; }),
+            sms.end());
   impl_->rays.reset();
 }
 
@@ -940,8 +961,14 @@ std::optional<ModelState> Physics::world_model_state(const std::string& name) co
     ModelState s;
     const Impl::DynModel* c = impl_->canonical(dm);
     if (!c) {
-      // no dynamic link anywhere below: the model frame where the world put it, at rest
+      // no dynamic link anywhere below, at rest: the frame follows the first static nested model with a link
+      // (its canonical link, Model::LoadLinks), else it stays where the world put it
       s.pose = dm.desc->pose;
+      for (const auto& sm : impl_->static_models) {
+        if (!nested_in(sm.desc->name, name) || sm.desc->links.empty()) continue;
+        if (sm.pose.matrix() != sm.desc->pose.matrix()) s.pose = sm.pose * sm.desc->pose.inverse() * dm.desc->pose;
+        break;
+      }
       return s;
     }
     // the point whose velocity is the model's [m], world frame: the model frame's origin, or, for a model with only
@@ -963,24 +990,48 @@ std::optional<ModelState> Physics::world_model_state(const std::string& name) co
     s.linear = eig(rb->getLinearVelocity()) + s.angular.cross(point - com.translation());
     return s;
   }
+  // a static model: where it was put, at rest
+  for (const auto& sm : impl_->static_models) {
+    if (sm.desc->name != name) continue;
+    ModelState s;
+    s.pose = sm.pose;
+    return s;
+  }
   return std::nullopt;
 }
 
+void Physics::Impl::place(StaticModel& sm, const Eigen::Isometry3d& pose) {
+  sm.pose = pose;
+  for (const auto& p : sm.parts) {
+    // as add_world_model places it; the broad phase takes the new box at the next step (IslandWorld::updateAabbs)
+    const btTransform T = bt(Eigen::Isometry3d(pose * p.link->pose * p.collision->shape.origin));
+    p.object->setWorldTransform(T);
+    p.object->setInterpolationWorldTransform(T);
+  }
+  rays.reset();
+}
+
 bool Physics::set_world_model_state(const std::string& name, const ModelState& st) {
+  const std::optional<ModelState> before = world_model_state(name);
+  if (!before) return false;
+  // Gazebo 11's Entity::SetWorldPoseModel: the nested models, static or not, move with the model, keeping their
+  // poses relative to it; gazebo_ros's twist (Model::SetLinearVel) goes to the model's own links only
+  const Eigen::Isometry3d moved = st.pose * before->pose.inverse();
+  for (auto& nested : impl_->dyn_models) {
+    if (!nested_in(nested.name, name)) continue;
+    for (btRigidBody* b : nested.bodies) {
+      const btTransform T = bt(Eigen::Isometry3d(moved * eig(b->getWorldTransform())));
+      b->setWorldTransform(T);
+      b->getMotionState()->setWorldTransform(T);
+    }
+  }
+  for (auto& sm : impl_->static_models)
+    if (nested_in(sm.desc->name, name)) impl_->place(sm, moved * sm.pose);
+  // a static model takes the pose; its twist has no body to go to (ODELink::SetLinearVel without a body)
+  for (auto& sm : impl_->static_models)
+    if (sm.desc->name == name) impl_->place(sm, st.pose);
   for (auto& dm : impl_->dyn_models) {
     if (dm.name != name) continue;
-    // Gazebo 11's Entity::SetWorldPoseModel: the nested models move with the model, keeping their poses relative
-    // to it; gazebo_ros's twist (Model::SetLinearVel) goes to the model's own links only
-    const std::optional<ModelState> before = world_model_state(name);
-    const Eigen::Isometry3d moved = st.pose * before->pose.inverse();
-    for (auto& nested : impl_->dyn_models) {
-      if (!nested_in(nested.name, name)) continue;
-      for (btRigidBody* b : nested.bodies) {
-        const btTransform T = bt(Eigen::Isometry3d(moved * eig(b->getWorldTransform())));
-        b->setWorldTransform(T);
-        b->getMotionState()->setWorldTransform(T);
-      }
-    }
     for (size_t i = 0; i < dm.bodies.size(); ++i) {
       const Eigen::Isometry3d com = st.pose * dm.desc->links[i].pose * dm.link_to_com[i];
       dm.bodies[i]->setWorldTransform(bt(com));
@@ -989,9 +1040,8 @@ bool Physics::set_world_model_state(const std::string& name, const ModelState& s
       dm.bodies[i]->setLinearVelocity(
           bt(Eigen::Vector3d(st.linear + st.angular.cross(com.translation() - st.pose.translation()))));
     }
-    return true;
   }
-  return false;
+  return true;
 }
 
 std::vector<Contact> Physics::contacts(double dt) const {

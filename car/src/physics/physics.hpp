@@ -58,9 +58,9 @@ class Physics {
   // One fixed step, no substeps.
   void step(double dt);
 
-  // A dynamic world model's state; nullopt for a static or unknown one.
+  // A world model's state (a static one's: where it is, at rest); nullopt for an unknown one.
   std::optional<ModelState> world_model_state(const std::string& name) const;
-  // false when the model is not a dynamic world model.
+  // Moves a world model and its nested models (a static one's twist is ignored); false for an unknown model.
   bool set_world_model_state(const std::string& name, const ModelState& s);
 
   std::vector<Contact> contacts(double dt) const;

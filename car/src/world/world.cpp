@@ -373,7 +373,6 @@ void World::set_model_state(const std::string& name, const ModelState& st) {
   if (auto* r = impl_->find(name)) {
     r->body->set_root_state(st);
   } else if (!impl_->phys->set_world_model_state(name, st)) {
-    if (has_model(name)) throw std::invalid_argument("model '" + name + "' is static");
     throw std::invalid_argument("no model named '" + name + "'");
   }
   impl_->phys->invalidate_rays();

@@ -92,6 +92,20 @@ class ServicesTest(unittest.TestCase):
         self.assertAlmostEqual(p.x, 0.0, places=9)
         self.assertAlmostEqual(p.y, 2.0, places=9)
 
+    def test_set_model_state_moves_a_static_model_and_ignores_its_twist(self):
+        # box_house is static: Gazebo 11 moves it (docs/COMPAT.md set_model_state); a static link takes no twist
+        state = ModelState(model_name='box_house', pose=pose(1.0, -2.0, 0.5))
+        state.twist.linear.x = 1.0
+        state.twist.angular.z = 1.0
+        res = self.set(state)
+        self.assertTrue(res.success, res.status_message)
+        self.run_until(0.05)
+        got = self.get('box_house', '')
+        self.assertAlmostEqual(got.pose.position.x, 1.0, places=9)
+        self.assertAlmostEqual(got.pose.position.y, -2.0, places=9)
+        self.assertAlmostEqual(got.pose.orientation.z, math.sin(0.25), places=9)
+        self.assertEqual((got.twist.linear.x, got.twist.angular.z), (0.0, 0.0))
+
     def test_pause_stops_time_and_unpause_runs_it(self):
         t0 = self.props().sim_time
         time.sleep(0.3)

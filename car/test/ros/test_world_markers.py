@@ -68,6 +68,23 @@ class WorldMarkersTest(unittest.TestCase):
         self.wait_for(moved)
         call('/gazebo/pause_physics')
 
+    def test_marker_follows_a_moved_static_model(self):
+        # a static model moves too (docs/COMPAT.md set_model_state): box_house's four walls shift 1 m along x
+        walls = [m.pose.position for m in self.wait_for(lambda a: True).markers if m.ns == 'box_house']
+        self.assertEqual(len(walls), 4)
+        state = ModelState(model_name='box_house')
+        state.pose.position.x, state.pose.position.y = -1.97643 + 1.0, 0.05996
+        state.pose.orientation.w = 1.0
+        self.assertTrue(call('/gazebo/set_model_state', SetModelState, state).success)
+        call('/gazebo/unpause_physics')
+
+        def moved(arr):
+            now = [m.pose.position for m in arr.markers if m.ns == 'box_house']
+            return all(abs(n.x - w.x - 1.0) < 0.01 and abs(n.y - w.y) < 0.01 for n, w in zip(now, walls))
+
+        self.wait_for(moved)
+        call('/gazebo/pause_physics')
+
 
 if __name__ == '__main__':
     rostest.rosrun('car', 'test_world_markers', WorldMarkersTest)
