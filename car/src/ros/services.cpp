@@ -458,6 +458,10 @@ bool SimNode::apply_wrench(gazebo_msgs::ApplyBodyWrench::Request& req, gazebo_ms
     res.status_message = std::string("ApplyBodyWrench: ") + e.what();
     return true;
   }
+  // accepted, as upstream, where a static link has no body to push (ODELink::AddForce)
+  if (world_->model_properties(link.model).is_static)
+    ROS_WARN("car: ApplyBodyWrench: model [%s] is static: the wrench on [%s] moves nothing", link.model.c_str(),
+             req.body_name.c_str());
   res.success = true;
   res.status_message = "";
   return true;

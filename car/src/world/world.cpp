@@ -792,7 +792,7 @@ void World::apply_wrench(const LinkRef& link, const Eigen::Vector3d& force, cons
   if (!impl_->find(link.model)) {
     const WorldModelDesc* m = desc_.find_model(link.model);
     if (!m || !has_model(link.model)) throw std::invalid_argument("no model named '" + link.model + "'");
-    if (m->is_static) throw std::invalid_argument("model '" + link.model + "' is static");
+    // a static model's link is accepted and moves nothing, as in Gazebo 11 (ODELink::AddForce without a body)
     world_link(*m, link.link);
   }
   impl_->wrenches.push_back({link, force, torque, first_tick(start, dt(), tick_),

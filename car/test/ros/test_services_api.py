@@ -247,6 +247,16 @@ class ServicesApiTest(unittest.TestCase):
         self.assertFalse(res.success)
         self.assertIn('ApplyBodyWrench: body does not exist', res.status_message)
 
+    def test_wrench_on_a_static_link_succeeds_and_moves_nothing(self):
+        # upstream pushes the job; ODELink::AddForce has no body for a static link
+        before = self.model_state('box_house', '').pose
+        res = self.wrench('box_house::Wall_1', '', Point(), Wrench(force=Vector3(100, 0, 0)), rospy.Time(0),
+                          rospy.Duration(1))
+        self.assertTrue(res.success, res.status_message)
+        self.assertEqual(res.status_message, '')
+        self.run_until(0.05)
+        self.assertEqual(self.model_state('box_house', '').pose, before)
+
     def test_nan_wrench_is_refused_and_nothing_moves(self):
         res = self.wrench('f::cube', '', Point(), Wrench(force=Vector3(float('nan'), 0, 0)), rospy.Time(0),
                           rospy.Duration(1))
