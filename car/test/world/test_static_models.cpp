@@ -138,6 +138,24 @@ TEST(StaticModels, ALidarSeesAStaticModelWhereItWasMoved) {
   EXPECT_NEAR(scans.back().ranges[180], 1.9 - laser_x, 0.05);
 }
 
+// delete_model takes a static model out of the ray scene as well as out of the physics: the wall's echo goes.
+TEST(StaticModels, ALidarNoLongerSeesADeletedStaticModel) {
+  World w(load_world_string(kWorld, "static.world"));
+  w.remove("crate");
+  w.spawn(load_urdf_string(read_text("test/data/car_camera_lidar04.urdf"), "car04"), "mycar", at(0, 0, 0));
+  w.set_sensor_active("mycar", "gazebo_rplidar", true);
+  w.set_model_state("wall", placed(2.0, 0.0, 0.0));
+  w.step(200);
+  const std::vector<LaserScanOut> before = w.take_outputs<LaserScanOut>();
+  ASSERT_FALSE(before.empty()) << "no scan in 0.2 s of a 5.5 Hz lidar";
+  ASSERT_TRUE(std::isfinite(before.back().ranges[180]));
+  w.remove("wall");
+  w.step(400);
+  const std::vector<LaserScanOut> after = w.take_outputs<LaserScanOut>();
+  ASSERT_FALSE(after.empty()) << "no scan in 0.4 s of a 5.5 Hz lidar";
+  EXPECT_TRUE(std::isinf(after.back().ranges[180]));
+}
+
 // reset_world (Model::Reset) puts a moved static model back at its load pose, collisions with it: the crate falls
 // past where the platform was moved to and lands on the ground.
 TEST(StaticModels, AResetPutsAMovedStaticModelBack) {
