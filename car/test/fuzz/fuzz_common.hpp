@@ -49,21 +49,21 @@ inline bool finite(const car_sim::ModelState& s) {
 }
 
 // Steps a loaded world: 1000 steps, fewer for big worlds so that one input stays well under libFuzzer's 1 s
-// (about 20 000 model-steps; a 1000-model world still gets 20 steps). Returns normally when the state stayed
-// finite or the world stopped itself.
-inline void step_and_check(car_sim::World& w) {
+// (about 20 000 model-steps; a 1000-model world still gets 20 steps). Returns true when the state stayed finite,
+// false when the world stopped itself.
+inline bool step_and_check(car_sim::World& w, uint64_t most = 1000) {
   // tools/fuzz.sh times a timeout's loading alone with CAR_FUZZ_NO_STEP=1 (the rule's 1 s is the loader's)
   static const bool no_step = std::getenv("CAR_FUZZ_NO_STEP") != nullptr;
-  if (no_step) return;
+  if (no_step) return false;
   const auto names = w.model_names();
   const std::size_t models = names.empty() ? 1 : names.size();
-  const uint64_t steps = std::max<uint64_t>(20, std::min<uint64_t>(1000, 20000 / models));
+  const uint64_t steps = std::max<uint64_t>(20, std::min<uint64_t>(most, 20000 / models));
   try {
     w.step(steps);
   } catch (const car_sim::SimulationError& e) {
     const std::string what = e.what();
     if (what.find("not finite") == std::string::npos) broke("SimulationError without its reason: " + what);
-    return;  // the guard stopped the world: a refusal with a message
+    return false;  // the guard stopped the world: a refusal with a message
   }
   for (const auto& n : names)
     if (!finite(w.model_state(n))) broke("model '" + n + "' is not finite after " + std::to_string(steps) + " steps");
@@ -71,6 +71,7 @@ inline void step_and_check(car_sim::World& w) {
     for (const auto& j : w.joint_states(r))
       if (!std::isfinite(j.position) || !std::isfinite(j.velocity))
         broke("joint '" + r + "/" + j.name + "' is not finite after " + std::to_string(steps) + " steps");
+  return true;
 }
 
 // Runs `load` (a loader call and whatever it builds); a LoadError must be well formed, and nothing else may escape.

@@ -15,7 +15,7 @@ struct P3dOut : Output {
   Eigen::Vector3d angular = Eigen::Vector3d::Zero();       // [rad/s], frameName's axes
   void visit(FieldVisitor& v) const override;
   bool odometry_sample(OdometrySample* s) const override {
-    *s = {pose, linear, angular};
+    *s = {pose, linear, angular, std::nullopt};
     return true;
   }
 };
