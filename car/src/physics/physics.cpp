@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <stdexcept>
 
@@ -238,6 +239,9 @@ struct Physics::Impl {
       const WorldCollision* collision;
     };
     std::vector<Part> parts;
+    // its bodies in the ray scene (build_rays), built at the description's pose: moved, they are placed at
+    // pose * description pose^-1; a link's planes are a body of their own, which stays
+    std::vector<int> ray_bodies;
   };
   std::vector<StaticModel> static_models;
   std::map<std::string, std::vector<btCollisionObject*>> model_objects;  // world model -> its Bullet objects
@@ -364,6 +368,8 @@ struct Physics::Impl {
   void build_rays();
   // Moves a static model's collisions (not its nested models) to `pose` [m], world frame.
   void place(StaticModel& sm, const Eigen::Isometry3d& pose);
+  // Its ray bodies where the model is now.
+  void place_rays(const StaticModel& sm);
 };
 
 // ---- robots -------------------------------------------------------------------------------------------------
@@ -846,16 +852,24 @@ Eigen::Isometry3d Physics::Impl::dyn_model_pose(const DynModel& dm) const {
 void Physics::Impl::build_rays() {
   rays = std::make_unique<RayScene>();
   moving_ray_bodies.clear();
-  for (const StaticModel& sm : static_models) {
+  for (StaticModel& sm : static_models) {
     const WorldModelDesc* m = sm.desc;
+    sm.ray_bodies.clear();
     for (const auto& l : m->links) {
-      std::vector<std::pair<Shape, Eigen::Isometry3d>> s;
-      for (const auto& c : l.collisions) {
-        const Eigen::Isometry3d& at = c.shape.type == ShapeType::Plane ? m->pose : sm.pose;
-        s.emplace_back(c.shape, at * l.pose * c.shape.origin);
+      // planes apart only where a link mixes them with other shapes
+      std::vector<std::pair<Shape, Eigen::Isometry3d>> s, planes;
+      for (const auto& c : l.collisions) s.emplace_back(c.shape, m->pose * l.pose * c.shape.origin);
+      const auto is_plane = [](const auto& x) { return x.first.type == ShapeType::Plane; };
+      if (std::any_of(s.begin(), s.end(), is_plane) && !std::all_of(s.begin(), s.end(), is_plane)) {
+        std::copy_if(s.begin(), s.end(), std::back_inserter(planes), is_plane);
+        s.erase(std::remove_if(s.begin(), s.end(), is_plane), s.end());
+        rays->add_body(planes, sdf_look(l));
       }
-      if (!s.empty()) rays->add_body(s, sdf_look(l));
+      if (s.empty()) continue;
+      const int body = rays->add_body(s, sdf_look(l));
+      if (!std::all_of(s.begin(), s.end(), is_plane)) sm.ray_bodies.push_back(body);
     }
+    place_rays(sm);
   }
   for (const auto& dm : dyn_models) {
     for (size_t i = 0; i < dm.bodies.size(); ++i) {
@@ -1008,7 +1022,14 @@ void Physics::Impl::place(StaticModel& sm, const Eigen::Isometry3d& pose) {
     p.object->setWorldTransform(T);
     p.object->setInterpolationWorldTransform(T);
   }
-  rays.reset();
+  if (rays) place_rays(sm);
+}
+
+void Physics::Impl::place_rays(const StaticModel& sm) {
+  if (sm.pose.matrix() == sm.desc->pose.matrix()) return;  // where it was built
+  const Eigen::Isometry3d moved = sm.pose * sm.desc->pose.inverse();
+  for (int body : sm.ray_bodies) rays->set_pose(body, moved);
+  rays_stamp = ~0ull;  // committed at the next rays()
 }
 
 bool Physics::set_world_model_state(const std::string& name, const ModelState& st) {

@@ -138,6 +138,20 @@ TEST(StaticModels, ALidarSeesAStaticModelWhereItWasMoved) {
   EXPECT_NEAR(scans.back().ranges[180], 1.9 - laser_x, 0.05);
 }
 
+// The ray scene is built afresh when a robot is spawned: a static model moved before that is built where it is now.
+TEST(StaticModels, ALidarSpawnedAfterTheMoveSeesTheStaticModelWhereItIs) {
+  World w(load_world_string(kWorld, "static.world"));
+  w.remove("crate");
+  w.set_model_state("wall", placed(2.0, 0.0, 0.0));
+  w.spawn(load_urdf_string(read_text("test/data/car_camera_lidar04.urdf"), "car04"), "mycar", at(0, 0, 0));
+  w.set_sensor_active("mycar", "gazebo_rplidar", true);
+  w.step(400);
+  const std::vector<LaserScanOut> scans = w.take_outputs<LaserScanOut>();
+  ASSERT_FALSE(scans.empty()) << "no scan in 0.4 s of a 5.5 Hz lidar";
+  const double laser_x = w.link_pose("mycar", "laser").translation().x();
+  EXPECT_NEAR(scans.back().ranges[180], 1.9 - laser_x, 0.05);
+}
+
 // delete_model takes a static model out of the ray scene as well as out of the physics: the wall's echo goes.
 TEST(StaticModels, ALidarNoLongerSeesADeletedStaticModel) {
   World w(load_world_string(kWorld, "static.world"));
