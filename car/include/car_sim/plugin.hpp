@@ -256,6 +256,11 @@ class Plugin {
   virtual void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) {}
   // Back to the state right after configure (a world reset put the robot back at its spawn pose).
   virtual void reset() {}
+  // Whether a reset that keeps time (reset_world) restarts its schedule at the reset's tick, as upstream's Reset
+  // of gazebo_ros_diff_drive does (last_update_time_ = now). Gazebo's sensors and the plug-ins without such a Reset
+  // keep their phase: no time-reset event fires. A reset that takes time back (reset_simulation) restarts every
+  // schedule.
+  virtual bool restarts_schedule_on_reset_world() const { return false; }
   // A lazy plug-in was switched on or off.
   virtual void set_active(bool active) {}
   // Which parts of its outputs anyone takes, a bit per part as its kind defines them (all bits: everything, the

@@ -172,8 +172,9 @@ struct World::Impl : WorldAccess {
   }
 
   // A fresh physics from the description; robots rebuilt where they were spawned, their motors re-made in id
-  // order, every plug-in reset onto a schedule from `tick`.
-  void rebuild(const std::set<std::string>& removed, uint64_t tick) {
+  // order, every plug-in reset; time_went_back (reset_simulation): every schedule restarts from `tick`, else
+  // (reset_world) only those of the plug-ins that say so.
+  void rebuild(const std::set<std::string>& removed, uint64_t tick, bool time_went_back) {
     for (auto& r : robots) r->body = nullptr;
     phys.reset();
     phys = std::make_unique<physics::Physics>(desc, physics_options(), removed);
@@ -185,7 +186,7 @@ struct World::Impl : WorldAccess {
       for (auto& i : r->plugins) {
         i.plugin->reset();
         i.queue.clear();
-        i.schedule.restart(tick);
+        if (time_went_back || i.plugin->restarts_schedule_on_reset_world()) i.schedule.restart(tick);
         if (i.active) i.plugin->set_active(true);
       }
     }
@@ -332,10 +333,10 @@ void World::reset() {
   tick_ = 0;
   impl_->wrenches.clear();
   impl_->efforts.clear();
-  reset_poses();
+  impl_->rebuild(removed_, tick_, true);
 }
 
-void World::reset_poses() { impl_->rebuild(removed_, tick_); }
+void World::reset_poses() { impl_->rebuild(removed_, tick_, false); }
 
 std::vector<std::string> World::model_names() const {
   std::vector<std::string> out;

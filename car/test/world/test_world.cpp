@@ -282,6 +282,35 @@ TEST(WorldPhysics, OdometryAtUpdateRate) {
   EXPECT_EQ(odom[1].tick, 20u);
 }
 
+// reset_world keeps time, and Gazebo fires no time-reset event: its sensors keep lastUpdateTime and so their phase.
+// The 5.5 Hz lidar scans at ticks ceil(k * 2000 / 11) from its start (182, 364, ..., 910); after a reset at tick
+// 1000 the next is k = 6, tick 1091, not 1000 + 182.
+TEST(WorldReset, ALidarKeepsItsPhaseOverAResetThatKeepsTime) {
+  auto w = box_house_with_car();
+  w->set_sensor_active("mycar", "gazebo_rplidar", true);
+  w->step(1000);
+  ASSERT_EQ(w->take_outputs<LaserScanOut>().size(), 5u);
+  w->reset_poses();
+  w->step(200);
+  const auto scans = w->take_outputs<LaserScanOut>();
+  ASSERT_EQ(scans.size(), 1u);
+  EXPECT_EQ(scans[0].tick, 1091u);
+}
+
+// gazebo_ros_diff_drive's Reset sets last_update_time_ to the reset's time: its 100 Hz updates start again from
+// the reset at tick 1005, every 10th tick after it as from a spawn (WorldPhysics.OdometryAtUpdateRate: 10, 20).
+TEST(WorldReset, TheDiffDriveRestartsItsClockOverAResetThatKeepsTime) {
+  auto w = box_house_with_car();
+  w->step(1005);
+  w->take_odometry();
+  w->reset_poses();
+  w->step(20);
+  const auto odom = w->take_odometry();
+  ASSERT_EQ(odom.size(), 2u);
+  EXPECT_EQ(odom[0].tick, 1015u);
+  EXPECT_EQ(odom[1].tick, 1025u);
+}
+
 TEST(WorldModels, SpawnTwiceFails) {
   auto w = box_house_with_car();
   EXPECT_THROW(w->spawn(car(), "mycar", at(1, 1, 0)), std::invalid_argument);

@@ -88,6 +88,7 @@ class DiffDrive : public Plugin, public TwistDrive {
 
   double update_rate() const override { return cfg_.update_rate; }
   // gazebo_ros's UpdateChild rule (UpdateClock)
+  bool restarts_schedule_on_reset_world() const override { return true; }
   Schedule schedule(double dt, uint64_t start_tick) const override {
     return Schedule::update_clock(cfg_.update_rate, dt, start_tick);
   }
