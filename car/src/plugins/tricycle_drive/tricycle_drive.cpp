@@ -45,6 +45,8 @@ class Tricycle : public Plugin, public TwistDrive {
   Schedule schedule(double dt, uint64_t start_tick) const override {
     return Schedule::update_clock(rate_, dt, start_tick);
   }
+  // deviation: its own clock_ (the ramp's dt) restarts at any reset, so its schedule restarts with it
+  bool restarts_schedule_on_reset_world() const override { return true; }
   std::vector<std::string> driven_joints() const override { return {steer_name_, wheel_name_}; }
 
   void configure(RobotHandle& robot) override {

@@ -121,3 +121,17 @@ TEST(Tricycle, ThirtyHertzUpdatesByUpdateChildsClock) {
   for (const auto& o : w.take_outputs()) ticks.push_back(o->tick);
   EXPECT_EQ(ticks, (std::vector<uint64_t>{33, 66, 99, 133, 166, 199}));
 }
+
+// car restarts the tricycle's clock at reset_world too, with its ramp's own clock (docs/COMPAT-plugins.md "After a
+// reset"; upstream keeps it): 30 Hz updates from a reset at tick 150 come at 150 + 33, 66, as from a spawn there.
+TEST(Tricycle, RestartsItsClockAtAResetThatKeepsTime) {
+  World w(empty_world());
+  w.spawn(load_urdf_string(tricycle("<updateRate>30</updateRate>"), "tri.urdf"), "tri", at(0, 0, 0));
+  w.step(150);
+  w.take_outputs();
+  w.reset_poses();
+  w.step(70);
+  std::vector<uint64_t> ticks;
+  for (const auto& o : w.take_outputs()) ticks.push_back(o->tick);
+  EXPECT_EQ(ticks, (std::vector<uint64_t>{183, 216}));
+}
