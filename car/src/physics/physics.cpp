@@ -15,7 +15,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iterator>
 #include <map>
 #include <stdexcept>
 
@@ -752,7 +751,7 @@ Physics::Impl::~Impl() {
 
 void Physics::Impl::add_world_model(const WorldModelDesc& m) {
   if (m.is_static) {
-    static_models.push_back({&m, m.pose, {}});
+    static_models.push_back({&m, m.pose, {}, {}});
     for (const auto& l : m.links) {
       const Eigen::Isometry3d T_link = m.pose * l.pose;
       for (const auto& c : l.collisions) {
@@ -856,18 +855,12 @@ void Physics::Impl::build_rays() {
     const WorldModelDesc* m = sm.desc;
     sm.ray_bodies.clear();
     for (const auto& l : m->links) {
-      // planes apart only where a link mixes them with other shapes
-      std::vector<std::pair<Shape, Eigen::Isometry3d>> s, planes;
-      for (const auto& c : l.collisions) s.emplace_back(c.shape, m->pose * l.pose * c.shape.origin);
-      const auto is_plane = [](const auto& x) { return x.first.type == ShapeType::Plane; };
-      if (std::any_of(s.begin(), s.end(), is_plane) && !std::all_of(s.begin(), s.end(), is_plane)) {
-        std::copy_if(s.begin(), s.end(), std::back_inserter(planes), is_plane);
-        s.erase(std::remove_if(s.begin(), s.end(), is_plane), s.end());
-        rays->add_body(planes, sdf_look(l));
-      }
-      if (s.empty()) continue;
-      const int body = rays->add_body(s, sdf_look(l));
-      if (!std::all_of(s.begin(), s.end(), is_plane)) sm.ray_bodies.push_back(body);
+      // a link's planes are a body apart (it stays where it was loaded), before the body of its other shapes
+      std::vector<std::pair<Shape, Eigen::Isometry3d>> shapes, planes;
+      for (const auto& c : l.collisions)
+        (c.shape.type == ShapeType::Plane ? planes : shapes).emplace_back(c.shape, m->pose * l.pose * c.shape.origin);
+      if (!planes.empty()) rays->add_body(planes, sdf_look(l));
+      if (!shapes.empty()) sm.ray_bodies.push_back(rays->add_body(shapes, sdf_look(l)));
     }
     place_rays(sm);
   }
@@ -1046,11 +1039,13 @@ bool Physics::set_world_model_state(const std::string& name, const ModelState& s
       b->getMotionState()->setWorldTransform(T);
     }
   }
-  for (auto& sm : impl_->static_models)
-    if (nested_in(sm.desc->name, name)) impl_->place(sm, moved * sm.pose);
   // a static model takes the pose; its twist has no body to go to (ODELink::SetLinearVel without a body)
-  for (auto& sm : impl_->static_models)
-    if (sm.desc->name == name) impl_->place(sm, st.pose);
+  for (auto& sm : impl_->static_models) {
+    if (sm.desc->name == name)
+      impl_->place(sm, st.pose);
+    else if (nested_in(sm.desc->name, name))
+      impl_->place(sm, moved * sm.pose);
+  }
   for (auto& dm : impl_->dyn_models) {
     if (dm.name != name) continue;
     for (size_t i = 0; i < dm.bodies.size(); ++i) {

@@ -459,7 +459,7 @@ bool SimNode::apply_wrench(gazebo_msgs::ApplyBodyWrench::Request& req, gazebo_ms
     return true;
   }
   // accepted, as upstream, where a static link has no body to push (ODELink::AddForce)
-  if (world_->model_properties(link.model).is_static)
+  if (!link.robot && world_->description().find_model(link.model)->is_static)
     ROS_WARN("car: ApplyBodyWrench: model [%s] is static: the wrench on [%s] moves nothing", link.model.c_str(),
              req.body_name.c_str());
   res.success = true;

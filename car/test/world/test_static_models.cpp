@@ -118,56 +118,63 @@ TEST(StaticModels, ASleepingObjectIsNotWokenByAStaticModelMovedOntoIt) {
   EXPECT_EQ(bits(w.model_state("crate")), bits(asleep));
 }
 
-// The seed car's lidar (laser link on the car, range noise 0.01 m) sees the wall moved in front of it: the ray at
-// index 180 (yaw 3/359 rad, cos = 1 - 3.5e-5) meets the wall's near face at x = 2 - 0.1 = 1.9 m.
-TEST(StaticModels, ALidarSeesAStaticModelWhereItWasMoved) {
-  World w(load_world_string(kWorld, "static.world"));
+namespace {
+
+// The seed car at the origin, facing +x, its lidar (5.5 Hz, range noise 0.01 m) on; the crate out of its way.
+void add_car_with_lidar(World& w) {
   w.remove("crate");
   w.spawn(load_urdf_string(read_text("test/data/car_camera_lidar04.urdf"), "car04"), "mycar", at(0, 0, 0));
   w.set_sensor_active("mycar", "gazebo_rplidar", true);
-  // a scan first (nothing ahead), so the wall moves in a scene the lidar has already swept
-  w.step(200);
-  const std::vector<LaserScanOut> before = w.take_outputs<LaserScanOut>();
-  ASSERT_FALSE(before.empty()) << "no scan in 0.2 s of a 5.5 Hz lidar";
-  EXPECT_TRUE(std::isinf(before.back().ranges[180]));
-  w.set_model_state("wall", placed(2.0, 0.0, 0.0));
-  w.step(400);
+}
+
+// Steps n steps; the last scan's ray 180 [m] (yaw 3/359 rad, cos = 1 - 3.5e-5: straight ahead), NaN when no scan
+// came in those steps.
+double range_ahead(World& w, uint64_t n) {
+  w.step(n);
   const std::vector<LaserScanOut> scans = w.take_outputs<LaserScanOut>();
-  ASSERT_FALSE(scans.empty()) << "no scan in 0.4 s of a 5.5 Hz lidar";
-  const double laser_x = w.link_pose("mycar", "laser").translation().x();
-  EXPECT_NEAR(scans.back().ranges[180], 1.9 - laser_x, 0.05);
+  return scans.empty() ? std::nan("") : scans.back().ranges[180];
+}
+
+// Where the wall moved to (2, 0, 0) faces the car: its near face at x = 2 - 0.1 = 1.9 m, from the laser link [m].
+double to_wall(const World& w) { return 1.9 - w.link_pose("mycar", "laser").translation().x(); }
+
+}  // namespace
+
+// The lidar sees the wall where it was moved, in a scene it had already swept.
+TEST(StaticModels, ALidarSeesAStaticModelWhereItWasMoved) {
+  World w(load_world_string(kWorld, "static.world"));
+  add_car_with_lidar(w);
+  const double before = range_ahead(w, 200);
+  ASSERT_FALSE(std::isnan(before)) << "no scan in 0.2 s of a 5.5 Hz lidar";
+  EXPECT_TRUE(std::isinf(before));  // nothing ahead
+  w.set_model_state("wall", placed(2.0, 0.0, 0.0));
+  const double after = range_ahead(w, 400);
+  ASSERT_FALSE(std::isnan(after)) << "no scan in 0.4 s of a 5.5 Hz lidar";
+  EXPECT_NEAR(after, to_wall(w), 0.05);
 }
 
 // The ray scene is built afresh when a robot is spawned: a static model moved before that is built where it is now.
 TEST(StaticModels, ALidarSpawnedAfterTheMoveSeesTheStaticModelWhereItIs) {
   World w(load_world_string(kWorld, "static.world"));
-  w.remove("crate");
   w.set_model_state("wall", placed(2.0, 0.0, 0.0));
-  w.spawn(load_urdf_string(read_text("test/data/car_camera_lidar04.urdf"), "car04"), "mycar", at(0, 0, 0));
-  w.set_sensor_active("mycar", "gazebo_rplidar", true);
-  w.step(400);
-  const std::vector<LaserScanOut> scans = w.take_outputs<LaserScanOut>();
-  ASSERT_FALSE(scans.empty()) << "no scan in 0.4 s of a 5.5 Hz lidar";
-  const double laser_x = w.link_pose("mycar", "laser").translation().x();
-  EXPECT_NEAR(scans.back().ranges[180], 1.9 - laser_x, 0.05);
+  add_car_with_lidar(w);
+  const double r = range_ahead(w, 400);
+  ASSERT_FALSE(std::isnan(r)) << "no scan in 0.4 s of a 5.5 Hz lidar";
+  EXPECT_NEAR(r, to_wall(w), 0.05);
 }
 
 // delete_model takes a static model out of the ray scene as well as out of the physics: the wall's echo goes.
 TEST(StaticModels, ALidarNoLongerSeesADeletedStaticModel) {
   World w(load_world_string(kWorld, "static.world"));
-  w.remove("crate");
-  w.spawn(load_urdf_string(read_text("test/data/car_camera_lidar04.urdf"), "car04"), "mycar", at(0, 0, 0));
-  w.set_sensor_active("mycar", "gazebo_rplidar", true);
+  add_car_with_lidar(w);
   w.set_model_state("wall", placed(2.0, 0.0, 0.0));
-  w.step(200);
-  const std::vector<LaserScanOut> before = w.take_outputs<LaserScanOut>();
-  ASSERT_FALSE(before.empty()) << "no scan in 0.2 s of a 5.5 Hz lidar";
-  ASSERT_TRUE(std::isfinite(before.back().ranges[180]));
+  const double before = range_ahead(w, 200);
+  ASSERT_FALSE(std::isnan(before)) << "no scan in 0.2 s of a 5.5 Hz lidar";
+  ASSERT_TRUE(std::isfinite(before));
   w.remove("wall");
-  w.step(400);
-  const std::vector<LaserScanOut> after = w.take_outputs<LaserScanOut>();
-  ASSERT_FALSE(after.empty()) << "no scan in 0.4 s of a 5.5 Hz lidar";
-  EXPECT_TRUE(std::isinf(after.back().ranges[180]));
+  const double after = range_ahead(w, 400);
+  ASSERT_FALSE(std::isnan(after)) << "no scan in 0.4 s of a 5.5 Hz lidar";
+  EXPECT_TRUE(std::isinf(after));
 }
 
 // reset_world (Model::Reset) puts a moved static model back at its load pose, collisions with it: the crate falls
