@@ -37,6 +37,13 @@ class LoadError : public std::runtime_error {
   std::string reason_;
 };
 
+// A plug-in that does not load while its model does (ResolveContext::drop): a LoadError where the plug-in is
+// resolved alone, a warning where its model is.
+class PluginNotLoaded : public LoadError {
+ public:
+  using LoadError::LoadError;
+};
+
 // Thrown by World::step when a body's state turned non-finite (a blow-up): what() names the body, the value and
 // the sim time; the world stays stopped there (every later step throws too) until it is reset or the model removed.
 class SimulationError : public std::runtime_error {

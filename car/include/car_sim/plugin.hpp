@@ -254,6 +254,12 @@ class Plugin {
   virtual void track(const StepContext& ctx, const RobotHandle& robot) {}
   // When the schedule is due (a lazy plug-in: and active), read-only: measure, push outputs.
   virtual void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) {}
+  // When the schedule is due while a lazy plug-in is off, read-only: the state upstream's sensor keeps between
+  // measurements whether or not anyone subscribes (an IMU's last velocity). No outputs, no noise drawn.
+  virtual void idle(const StepContext& ctx, const RobotHandle& robot) {}
+  // Sim time starts at `tick` for this plug-in: at its load (after configure), and at 0 when time goes back
+  // (reset_simulation: Gazebo's time-reset event). Its schedule restarts there too.
+  virtual void start_clock(uint64_t tick) {}
   // Back to the state right after configure (a world reset put the robot back at its spawn pose).
   virtual void reset() {}
   // Whether a reset that keeps time (reset_world) restarts its schedule at the reset's tick, as upstream's Reset
@@ -296,6 +302,9 @@ class ResolveContext {
   // Load errors at a plug-in key, or at a sensor key ("sensor[S]/KEY").
   [[noreturn]] void fail(const std::string& key, const std::string& reason) const;
   [[noreturn]] void fail_sensor(const std::string& key, const std::string& reason) const;
+  // The plug-in does not load and the model loads without it, as where upstream's Load logs a ROS_FATAL and
+  // returns: a warning "plugin-not-loaded" at the key (a plug-in the node attaches alone: a LoadError).
+  [[noreturn]] void drop(const std::string& key, const std::string& reason) const;
   void warn(Severity severity, const std::string& code, const std::string& key, const std::string& message);
   void set(const std::string& key, const std::string& value);  // replaces a resolved value
 

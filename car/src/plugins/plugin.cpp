@@ -181,6 +181,10 @@ void ResolveContext::fail(const std::string& key, const std::string& reason) con
   throw LoadError(model_.source, spec_.line, where(key), reason);
 }
 
+void ResolveContext::drop(const std::string& key, const std::string& reason) const {
+  throw PluginNotLoaded(model_.source, spec_.line, where(key), reason);
+}
+
 void ResolveContext::fail_sensor(const std::string& key, const std::string& reason) const {
   const std::string s = sensor_ ? "sensor[" + sensor_->name + "]" : where("");
   throw LoadError(model_.source, sensor_ ? sensor_->line : spec_.line, key.empty() ? s : s + "/" + key, reason);

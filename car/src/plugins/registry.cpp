@@ -6,6 +6,7 @@
 #include "camera/camera.hpp"
 #include "diff_drive/diff_drive.hpp"
 #include "imu/imu.hpp"
+#include "imu_sensor/imu_sensor.hpp"
 #include "laser/laser.hpp"
 #include "openni_kinect/openni_kinect.hpp"
 #include "p3d/p3d.hpp"
@@ -40,6 +41,7 @@ const std::vector<const PluginKind*>& plugin_kinds() {
       &camera_kind(),
       &openni_kinect_kind(),
       &imu_kind(),
+      &imu_sensor_kind(),
       &p3d_kind(),
       &planar_move_kind(),
       &skid_steer_drive_kind(),

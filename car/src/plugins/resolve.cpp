@@ -143,6 +143,17 @@ void warn_unknown(std::vector<Diagnostic>* diags, const std::string& where, cons
                     "plug-in '" + p.filename + "' is not simulated by car; ignored", p.line});
 }
 
+// Resolves one plug-in into `out`, or leaves it out with a warning where it does not load (ResolveContext::drop).
+void resolve_into(const RobotModel& m, const PluginKind& kind, const PluginSpec& p, const SensorSpec* s,
+                  ModelConfig* out) {
+  try {
+    out->plugins.push_back(resolve_one(m, kind, p, s, &out->diagnostics));
+  } catch (const PluginNotLoaded& e) {
+    out->diagnostics.push_back(
+        {Severity::Warning, "plugin-not-loaded", e.element(), e.reason() + "; the plug-in is not loaded", p.line});
+  }
+}
+
 }  // namespace
 
 PluginConfig resolve_plugin(const RobotModel& model, const PluginSpec& p, std::vector<Diagnostic>* diags) {
@@ -161,7 +172,7 @@ ModelConfig resolve_plugins(const RobotModel& m) {
       warn_unknown(&out.diagnostics, "gazebo/plugin[" + p.name + "]", p);
       continue;
     }
-    out.plugins.push_back(resolve_one(m, *kind, p, nullptr, &out.diagnostics));
+    resolve_into(m, *kind, p, nullptr, &out);
   }
   std::set<std::string> sensor_types;
   for (const PluginKind* k : plugin_kinds()) sensor_types.insert(k->sensor_types.begin(), k->sensor_types.end());
@@ -178,7 +189,7 @@ ModelConfig resolve_plugins(const RobotModel& m) {
         warn_unknown(&out.diagnostics, "sensor[" + s.name + "]/plugin[" + p.name + "]", p);
         continue;
       }
-      out.plugins.push_back(resolve_one(m, *kind, p, &s, &out.diagnostics));
+      resolve_into(m, *kind, p, &s, &out);
     }
   }
   return out;

@@ -169,6 +169,7 @@ struct World::Impl : WorldAccess {
     i.plugin->configure(r);
     i.info.summary = i.plugin->summary();
     i.schedule = i.plugin->schedule(desc.step_size, tick);
+    i.plugin->start_clock(tick);
   }
 
   // A fresh physics from the description; robots rebuilt where they were spawned, their motors re-made in id
@@ -187,6 +188,7 @@ struct World::Impl : WorldAccess {
         i.plugin->reset();
         i.queue.clear();
         if (time_went_back || i.plugin->restarts_schedule_on_reset_world()) i.schedule.restart(tick);
+        if (time_went_back) i.plugin->start_clock(tick);
         if (i.active) i.plugin->set_active(true);
       }
     }
@@ -315,7 +317,10 @@ void World::step(uint64_t n) {
         if (on) i.plugin->track(ctx, *r);
         if (!i.schedule.due(tick_)) continue;
         i.schedule.advance(tick_);
-        if (!on) continue;
+        if (!on) {
+          i.plugin->idle(ctx, *r);
+          continue;
+        }
         const size_t before = i.queue.size();
         i.plugin->post_physics(ctx, *r, &i.queue);
         for (size_t k = before; k < i.queue.size(); ++k) {

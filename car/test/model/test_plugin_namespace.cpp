@@ -44,7 +44,7 @@ const char* kBot = R"(<robot name="bot">
       <height>6</height></image><clip><near>0.05</near><far>10</far></clip></camera>
       <plugin name="camera" filename="libgazebo_ros_camera.so">NS<cameraName>cam</cameraName></plugin></sensor>
     <sensor type="imu" name="imu">
-      <plugin name="imu" filename="libgazebo_ros_imu_sensor.so">NS<topicName>imu</topicName></plugin></sensor>
+      <plugin name="imu" filename="libgazebo_ros_imu_sensor.so">NS<topicName>imu</topicName><frameName>base</frameName></plugin></sensor>
   </gazebo>
 </robot>)";
 
@@ -239,7 +239,7 @@ TEST(PluginNamespace, UnknownFileHasNoRule) {
   EXPECT_EQ(r, NamespaceRule::AsWritten);
 }
 
-// The two imu files of one kind read it differently (gazebo_ros_imu.cpp vs gazebo_ros_imu_sensor.cpp).
+// The two imu files read it differently (gazebo_ros_imu.cpp vs gazebo_ros_imu_sensor.cpp).
 TEST(PluginNamespace, ImuModelPluginAbsentIsGlobal) {
   NamespaceRule model_plugin, sensor_plugin;
   ASSERT_TRUE(namespace_rule("libgazebo_ros_imu.so", &model_plugin));

@@ -32,7 +32,7 @@ URDF = """<robot name="nsbot">
       <plugin name="laser" filename="libgazebo_ros_laser.so"><robotNamespace></robotNamespace>
       <topicName>scan</topicName></plugin></sensor>
     <sensor type="imu" name="imu"><plugin name="imu" filename="libgazebo_ros_imu_sensor.so">
-      <topicName>imu</topicName></plugin></sensor>
+      <topicName>imu</topicName><frameName>base</frameName></plugin></sensor>
   </gazebo>
 </robot>"""
 

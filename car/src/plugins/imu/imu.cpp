@@ -1,10 +1,12 @@
-// The IMU: orientation from the true pose; angular velocity and linear acceleration (gravity included) by finite
-// differences of the sensor frame's last three poses; the sensor's <noise> (per axis: mean, stddev, a bias drawn
-// once), then gaussianNoise as stddev on each component.
+// libgazebo_ros_imu.so, as gazebo_ros_imu.cpp's UpdateChild computes it: at each message (p3d's rate control) the
+// body's velocity change since the last message over its time, without gravity, and its angular velocity, both
+// world vectors turned by rot = rpyOffset * the body's rotation (not by its inverse), gaussianNoise added before
+// the turn; the orientation is rot. docs/COMPAT-sensors.md "The two IMU plug-ins".
 #include "imu.hpp"
 
-#include <algorithm>
 #include <cmath>
+
+#include "xml_util.hpp"
 
 namespace car_sim {
 
@@ -14,177 +16,83 @@ constexpr ParamType T = ParamType::Text;
 constexpr ParamType Fr = ParamType::Frame;
 constexpr ParamType N = ParamType::Number;
 
-// One axis of the sensor's <noise>: [rad/s] for rates, [m/s^2] for accelerations.
-struct AxisNoise {
-  bool on = false;
-  double mean = 0, stddev = 0, bias_mean = 0, bias_stddev = 0;
-  double bias = 0;  // drawn once
-};
-
-const char* const kQuantity[2] = {"angular_velocity", "linear_acceleration"};
-const char* const kOldQuantity[2] = {"rate", "accel"};
-const char* const kAxis[3] = {"x", "y", "z"};
-const char* const kNoiseKey[4] = {"mean", "stddev", "bias_mean", "bias_stddev"};
-
-// An axis's noise: the SDF 1.5+ per-axis block imu/<quantity>/<axis>/noise/..., else the old form
-// imu/noise/<rate|accel>/... (with imu/noise/type) for all three axes. The per-axis block's type is an XML
-// attribute car's sensor reader does not keep: a block with any non-zero value is Gaussian.
-AxisNoise axis_noise(const PluginConfig& c, int q, int k) {
-  AxisNoise n;
-  double v[4];
-  bool given = false;
-  for (int i = 0; i < 4; ++i) {
-    const std::string key = std::string("imu/") + kQuantity[q] + "/" + kAxis[k] + "/noise/" + kNoiseKey[i];
-    v[i] = c.number(key);
-    given = given || !c.param(key).from_default;
-  }
-  if (!given) {
-    if (c.text("imu/noise/type") != "gaussian") return n;
-    for (int i = 0; i < 4; ++i) v[i] = c.number(std::string("imu/noise/") + kOldQuantity[q] + "/" + kNoiseKey[i]);
-  }
-  n.mean = v[0];
-  n.stddev = v[1];
-  n.bias_mean = v[2];
-  n.bias_stddev = v[3];
-  n.on = v[0] != 0 || v[1] != 0 || v[2] != 0 || v[3] != 0;
-  return n;
-}
-
-// The sensor keys: update_rate and every noise key, defaults 0 (no noise).
-const std::vector<ParamDef>& imu_sensor_schema() {
-  static const std::vector<std::string> keys = [] {
-    std::vector<std::string> ks;
-    for (int q = 0; q < 2; ++q)
-      for (int k = 0; k < 3; ++k)
-        for (int i = 0; i < 4; ++i)
-          ks.push_back(std::string("imu/") + kQuantity[q] + "/" + kAxis[k] + "/noise/" + kNoiseKey[i]);
-    for (int q = 0; q < 2; ++q)
-      for (int i = 0; i < 4; ++i) ks.push_back(std::string("imu/noise/") + kOldQuantity[q] + "/" + kNoiseKey[i]);
-    return ks;
-  }();
-  static const std::vector<ParamDef> s = [] {
-    std::vector<ParamDef> d = {{"update_rate", N, "0", "Hz"}, {"imu/noise/type", T, "none", ""}};
-    for (const auto& k : keys)
-      d.push_back({k.c_str(), N, "0", k.find("angular_velocity") != std::string::npos || k.find("/rate/") != std::string::npos ? "rad/s" : "m/s^2"});
-    return d;
-  }();
-  return s;
-}
-
 class Imu : public Plugin {
  public:
   Imu(const PluginConfig& c, const std::string& robot, uint64_t seed)
-      : link_(c.link), sensor_pose_(c.sensor_pose),
-        rate_(c.sensor.empty() ? c.number("updateRate") : c.number("update_rate")), model_plugin_(c.sensor.empty()),
-        stddev_(c.number("gaussianNoise")),
-        rng0_(plugin_rng(seed, robot, c.sensor.empty() ? c.name : c.sensor)), rng_(rng0_) {
-    proto_.sensor = c.sensor.empty() ? c.name : c.sensor;
-    if (!c.sensor.empty()) {
-      // the sensor's <noise>: per axis; each bias drawn once, N(bias_mean, bias_stddev) with a random sign, from
-      // the instance's generator (so the same seed gives the same biases, also after a reset)
-      std::mt19937_64 g = rng0_;
-      for (int q = 0; q < 2; ++q)
-        for (int k = 0; k < 3; ++k) {
-          AxisNoise& n = noise_[q][k];
-          n = axis_noise(c, q, k);
-          if (n.bias_stddev > 0 || n.bias_mean != 0) {
-            std::normal_distribution<double> b(n.bias_mean, n.bias_stddev > 0 ? n.bias_stddev : 1.0);
-            n.bias = n.bias_stddev > 0 ? b(g) : n.bias_mean;
-            if (std::uniform_real_distribution<double>(0.0, 1.0)(g) < 0.5) n.bias = -n.bias;
-          }
-        }
-      rng0_ = g;
-      rng_ = rng0_;
-    }
+      : link_(c.link), rate_(c.number("updateRate")), stddev_(std::abs(c.number("gaussianNoise"))),
+        rng0_(plugin_rng(seed, robot, c.name)), rng_(rng0_) {
+    proto_.sensor = c.name;
+    const auto rpy = detail::parse_numbers(c.text("rpyOffset"), 3);
+    offset_ = Eigen::Quaterniond(detail::rpy_to_matrix((*rpy)[0], (*rpy)[1], (*rpy)[2]));
   }
 
   double update_rate() const override { return rate_; }
-  // the model plug-in (libgazebo_ros_imu.so): its rate control, last from the load, set by each publication; the
-  // sensor's own update_rate otherwise
+  // p3d's rate control: last from the load, set by each message
   Schedule schedule(double dt, uint64_t start_tick) const override {
-    return model_plugin_ ? Schedule::since_last(rate_, dt, start_tick, false) : Schedule(rate_, dt, start_tick);
+    return Schedule::since_last(rate_, dt, start_tick, false);
   }
-  void reset() override {
-    rng_ = rng0_;
-    count_ = 0;
-  }
-  void set_active(bool active) override {
-    if (active) count_ = 0;
-  }
+  // last = the load's tick, or 0 when time goes back (car restarts the rate grid there, COMPAT-plugins p3d);
+  // v_last stays (0 at the load: a robot is spawned at rest)
+  void start_clock(uint64_t tick) override { last_tick_ = tick; }
+  // the noise generator restarts (car's replay); last and v_last stay, as upstream has no Reset
+  void reset() override { rng_ = rng0_; }
 
-  // the sensor frame's last three poses, for finite differences
-  void track(const StepContext&, const RobotHandle& robot) override {
-    history_[0] = history_[1];
-    history_[1] = history_[2];
-    history_[2] = robot.link_pose(link_) * sensor_pose_;
-    count_ = std::min(3, count_ + 1);
-  }
+  // car's rate grid runs while nobody subscribes, and last follows it (docs/COMPAT-plugins.md p3d "When")
+  void idle(const StepContext& ctx, const RobotHandle& robot) override { difference(ctx, robot.link_state(link_)); }
 
-  void post_physics(const StepContext& ctx, const RobotHandle&, OutputQueue* out) override {
-    if (count_ < 3) return;
-    const Eigen::Isometry3d* p = history_;  // p[0] oldest, p[2] now
-    const double dt = ctx.dt;
-    const Eigen::Matrix3d Rt = p[2].linear().transpose();
-    // angular velocity from the last rotation step, in the sensor frame
-    const Eigen::AngleAxisd step(p[1].linear().transpose() * p[2].linear());
-    Eigen::Vector3d w = step.axis() * step.angle() / dt;
-    // acceleration from the last two velocities, minus gravity: at rest it reads +g up
-    const Eigen::Vector3d v1 = (p[1].translation() - p[0].translation()) / dt;
-    const Eigen::Vector3d v2 = (p[2].translation() - p[1].translation()) / dt;
-    Eigen::Vector3d a = Rt * ((v2 - v1) / dt - ctx.world->environment().gravity);
-    // the sensor's noise (SDF <noise>): N(mean, stddev) + bias per axis
-    for (int k = 0; k < 3; ++k) {
-      w[k] += sample(noise_[0][k]);
-      a[k] += sample(noise_[1][k]);
-    }
+  void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) override {
+    const ModelState s = robot.link_state(link_);
+    difference(ctx, s);
+    Eigen::Quaterniond rot = offset_ * Eigen::Quaterniond(s.pose.linear());
+    rot.normalize();
+    Eigen::Vector3d w = s.angular, a = acceleration_;
     if (stddev_ > 0) {
       std::normal_distribution<double> noise(0.0, stddev_);
       for (int k = 0; k < 3; ++k) w[k] += noise(rng_);
       for (int k = 0; k < 3; ++k) a[k] += noise(rng_);
     }
     auto o = std::make_unique<ImuOut>(proto_);
-    o->orientation = Eigen::Quaterniond(p[2].linear());
-    o->angular_velocity = w;
-    o->linear_acceleration = a;
+    o->orientation = rot;
+    // upstream's rot.RotateVector: the world vectors turned by the body's rotation
+    o->angular_velocity = rot * w;
+    o->linear_acceleration = rot * a;
     out->push_back(std::move(o));
   }
 
  private:
   std::string link_;
-  Eigen::Isometry3d sensor_pose_;
-  double rate_;
-  bool model_plugin_;  // libgazebo_ros_imu.so (no <sensor>)
-  double stddev_;
+  double rate_;    // [Hz] updateRate, 0 = every step
+  double stddev_;  // gaussianNoise; upstream's Box-Muller gives a negative one the same spread
+  Eigen::Quaterniond offset_;
   std::mt19937_64 rng0_, rng_;  // the noise generator as seeded, and as it runs
   ImuOut proto_;
-  AxisNoise noise_[2][3];  // [angular velocity, linear acceleration][x, y, z]
-  Eigen::Isometry3d history_[3];
+  uint64_t last_tick_ = 0;                                     // the last message's (or the load's)
+  Eigen::Vector3d last_velocity_ = Eigen::Vector3d::Zero();   // [m/s] world frame, the body's origin then
+  Eigen::Vector3d acceleration_ = Eigen::Vector3d::Zero();    // [m/s^2] world frame, no gravity
 
-  double sample(const AxisNoise& n) {
-    if (!n.on) return 0.0;
-    double e = n.mean + n.bias;
-    if (n.stddev > 0) e += std::normal_distribution<double>(0.0, n.stddev)(rng_);
-    return e;
+  // tmp_dt = last - t as doubles; when not 0, a = (v_last - v) / tmp_dt, v_last = v; last = t
+  void difference(const StepContext& ctx, const ModelState& s) {
+    const double tmp_dt = common_time_double(tick_time_ns(last_tick_, ctx.dt)) -
+                          common_time_double(tick_time_ns(ctx.tick, ctx.dt));
+    if (tmp_dt != 0) {
+      acceleration_ = (last_velocity_ - s.linear) / tmp_dt;
+      last_velocity_ = s.linear;
+    }
+    last_tick_ = ctx.tick;
   }
-  int count_ = 0;
 };
 
 void finish(ResolveContext& ctx) {
   PluginConfig& c = ctx.config();
-  if (ctx.sensor()) {
-    for (const ParamDef& d : imu_sensor_schema())
-      if (std::string(d.key).find("stddev") != std::string::npos && c.number(d.key) < 0)
-        ctx.fail_sensor(d.key, "stddev must be >= 0");
-    const std::string& t = c.text("imu/noise/type");
-    if (t != "none" && t != "gaussian") ctx.fail_sensor("imu/noise/type", "unknown noise type '" + t + "'");
-    for (const char* key : {"frameName", "bodyName"})
-      if (c.text(key).empty()) ctx.set(key, ctx.sensor()->link);
-    return;
-  }
+  if (c.param("bodyName").from_default) ctx.drop("bodyName", "imu plugin missing <bodyName>, cannot proceed");
   const std::string body = c.text("bodyName");
-  if (!ctx.model().find_link(body)) ctx.fail("bodyName", "link '" + body + "' not found in the model");
+  if (!ctx.model().find_link(body))
+    ctx.drop("bodyName", "gazebo_ros_imu plugin error: bodyName: " + body + " does not exist");
+  for (const char* key : {"xyzOffset", "rpyOffset"})
+    if (!detail::parse_numbers(c.text(key), 3)) ctx.fail(key, "'" + c.text(key) + "' is not 3 numbers");
+  warn_negative_rate(ctx, "updateRate");
   c.link = body;
-  if (c.text("frameName").empty()) ctx.set("frameName", body);
+  if (c.param("frameName").from_default) ctx.set("frameName", body);
 }
 
 }  // namespace
@@ -200,29 +108,27 @@ const PluginKind& imu_kind() {
   static const PluginKind k = [] {
     PluginKind k;
     k.name = "imu";
-    k.filenames = {"libgazebo_ros_imu_sensor.so", "libgazebo_ros_imu.so"};
-    // gazebo_ros_imu_sensor.cpp: absent -> the model's name; the model plug-in gazebo_ros_imu.cpp: as written
-    k.namespace_rule = NamespaceRule::AbsentIsModel;
-    k.file_namespace_rules = {{"libgazebo_ros_imu.so", NamespaceRule::AsWritten}};
+    k.filenames = {"libgazebo_ros_imu.so"};
+    // gazebo_ros_imu.cpp LoadThread: robotNamespace as written
+    k.namespace_rule = NamespaceRule::AsWritten;
     k.model_level = true;
-    k.sensor_types = {"imu"};
-    k.sensor_schema = imu_sensor_schema();
     k.schema = {
         {"robotNamespace", T, "", ""},
         {"bodyName", T, "", ""},
-        {"topicName", T, "imu", ""},
+        {"topicName", T, "/default_imu", ""},
         {"frameName", Fr, "", ""},
         {"gaussianNoise", N, "0", ""},
         {"updateRate", N, "0", "Hz"},
         {"xyzOffset", T, "0 0 0", "m"},
         {"rpyOffset", T, "0 0 0", "rad"},
     };
-    k.ignored = {{"alwaysOn", ""}, {"serviceName", ""}};
+    k.ignored = {{"alwaysOn", ""},
+                 {"serviceName", "the calibration service (std_srvs/Empty, always succeeds) is not advertised"}};
     k.lazy = true;
     k.output_group = "imus";
-    // sensor_msgs/Imu on topicName in frameName, queue 10, gaussianNoise^2 on the three covariances' diagonals
+    // sensor_msgs/Imu on topicName in frameName, queue 1, gaussianNoise^2 on the three covariances' diagonals
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
-      OutputPort p = sensor_port(c, robot, "imu", SampleType::Imu, "topicName", c.text("frameName"), 10);
+      OutputPort p = sensor_port(c, robot, "imu", SampleType::Imu, "topicName", c.text("frameName"), 1);
       const double variance = std::pow(c.number("gaussianNoise"), 2);
       p.orientation_covariance.fill(variance);
       p.angular_velocity_covariance.fill(variance);

@@ -1,4 +1,4 @@
-// libgazebo_ros_imu_sensor.so on a <sensor type="imu">, and the robot-level libgazebo_ros_imu.so.
+// The robot-level libgazebo_ros_imu.so (gazebo_ros_imu.cpp), and the IMU sample every IMU kind publishes.
 #pragma once
 
 #include <string>
@@ -7,8 +7,8 @@
 
 namespace car_sim {
 
-// The sensor frame's orientation in the world, its angular velocity [rad/s] and its linear acceleration [m/s^2],
-// gravity included, both in the sensor frame.
+// The orientation, angular velocity [rad/s] and linear acceleration [m/s^2] of an IMU message, as its kind
+// defines them (docs/COMPAT-sensors.md "The two IMU plug-ins", hector's IMU).
 struct ImuOut : Output, ImuSample {
   std::string sensor;
   void visit(FieldVisitor& v) const override;

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "../range/ray_world.hpp"
-#include "imu/imu.hpp"
+#include "imu/imu.hpp"  // ImuOut
 
 using namespace car_sim;
 using namespace car_sim::test_support;
@@ -15,7 +15,7 @@ namespace {
 std::string imu_sensor(const std::string& imu) {
   return "<sensor type='imu' name='imu'><update_rate>100</update_rate><imu>" + imu +
          "</imu><plugin name='imu_plugin' filename='libgazebo_ros_imu_sensor.so'><topicName>imu</topicName>"
-         "</plugin></sensor>";
+         "<frameName>base</frameName><updateRateHZ>100</updateRateHZ></plugin></sensor>";
 }
 
 std::string axis(const char* axis, const std::string& noise) {
