@@ -104,6 +104,15 @@ void ImuOut::visit(FieldVisitor& v) const {
   v.vector("linear_acceleration", linear_acceleration.data(), 3);
 }
 
+std::vector<OutputPort> imu_ports(const PluginConfig& c, const std::string& robot, const Environment&) {
+  OutputPort p = sensor_port(c, robot, "imu", SampleType::Imu, "topicName", c.text("frameName"), 1);
+  const double variance = std::pow(c.number("gaussianNoise"), 2);
+  p.orientation_covariance.fill(variance);
+  p.angular_velocity_covariance.fill(variance);
+  p.linear_acceleration_covariance.fill(variance);
+  return std::vector<OutputPort>{p};
+}
+
 const PluginKind& imu_kind() {
   static const PluginKind k = [] {
     PluginKind k;
@@ -126,15 +135,7 @@ const PluginKind& imu_kind() {
                  {"serviceName", "the calibration service (std_srvs/Empty, always succeeds) is not advertised"}};
     k.lazy = true;
     k.output_group = "imus";
-    // sensor_msgs/Imu on topicName in frameName, queue 1, gaussianNoise^2 on the three covariances' diagonals
-    k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
-      OutputPort p = sensor_port(c, robot, "imu", SampleType::Imu, "topicName", c.text("frameName"), 1);
-      const double variance = std::pow(c.number("gaussianNoise"), 2);
-      p.orientation_covariance.fill(variance);
-      p.angular_velocity_covariance.fill(variance);
-      p.linear_acceleration_covariance.fill(variance);
-      return std::vector<OutputPort>{p};
-    };
+    k.outputs = imu_ports;
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {
       return std::make_unique<Imu>(c, robot, seed);

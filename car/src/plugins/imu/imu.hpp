@@ -18,6 +18,10 @@ struct ImuOut : Output, ImuSample {
   }
 };
 
+// Both gazebo_ros IMU plug-ins' port: sensor_msgs/Imu on topicName in frameName, queue 1 (as their advertise),
+// gaussianNoise^2 on the three covariances' diagonals.
+std::vector<OutputPort> imu_ports(const PluginConfig& c, const std::string& robot, const Environment& env);
+
 const PluginKind& imu_kind();
 
 }  // namespace car_sim

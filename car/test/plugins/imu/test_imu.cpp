@@ -49,6 +49,28 @@ std::unique_ptr<World> cube_world(const std::string& gazebo, const std::string& 
   return w;
 }
 
+// The cube in the air, its IMU off, pushed along world x by 1 N for 0.3 s (then v_x = 0.3 m/s), falling; the
+// IMU switched on at 0.3 s: the messages of the next 10 ms.
+std::vector<ImuOut> pushed_then_subscribed(const std::string& gazebo, const std::string& plugin) {
+  auto w = cube_world(gazebo, plugin, 10.0);
+  w->set_plugin_active("cube", plugin, false);
+  w->apply_wrench({"cube", "base"}, Eigen::Vector3d(1, 0, 0), Eigen::Vector3d::Zero(), 0.0, 0.2995);
+  w->step(300);
+  w->set_plugin_active("cube", plugin, true);
+  w->step(10);
+  return w->take_outputs<ImuOut>();
+}
+
+// The cube falling from 10 m for 0.5 s (v = -4.9 m/s), reset_world, then 0.1 s more: the messages after the reset.
+std::vector<ImuOut> fell_then_reset(const std::string& gazebo, const std::string& plugin) {
+  auto w = cube_world(gazebo, plugin, 10.0);
+  w->step(500);
+  w->take_outputs<ImuOut>();
+  w->reset_poses();
+  w->step(100);
+  return w->take_outputs<ImuOut>();
+}
+
 std::vector<uint64_t> ticks(const std::vector<ImuOut>& ms) {
   std::vector<uint64_t> t;
   for (const ImuOut& m : ms) t.push_back(m.tick);
@@ -129,13 +151,7 @@ TEST(ImuSensor, UpdateRateHzGatesTheSensorsUpdates) {
 // for the first 0.3 s (v_x = 0.3 m/s), then falling freely, the first message after a subscription at 0.3 s reads
 // 0; from rest at the load it would read 0.3 / 0.31 = 0.97 m/s^2.
 TEST(ImuSensor, MeasuresWhileNobodySubscribes) {
-  auto w = cube_world(sensor_imu("<updateRateHZ>100</updateRateHZ>"), "imu_plugin", 10.0);
-  w->set_plugin_active("cube", "imu_plugin", false);
-  w->apply_wrench({"cube", "base"}, Eigen::Vector3d(1, 0, 0), Eigen::Vector3d::Zero(), 0.0, 0.2995);
-  w->step(300);
-  w->set_plugin_active("cube", "imu_plugin", true);
-  w->step(10);
-  const auto ms = w->take_outputs<ImuOut>();
+  const auto ms = pushed_then_subscribed(sensor_imu("<updateRateHZ>100</updateRateHZ>"), "imu_plugin");
   ASSERT_EQ(ticks(ms), (std::vector<uint64_t>{310}));
   EXPECT_NEAR(ms[0].linear_acceleration.norm(), 0.0, 1e-6);
 }
@@ -143,12 +159,7 @@ TEST(ImuSensor, MeasuresWhileNobodySubscribes) {
 // reset_world keeps the last velocity (upstream has no reset for it): falling at 0.5 s (v = -4.9 m/s), put back at
 // rest, 0.1 s later v = -0.98 m/s: (-0.98 + 4.9) / 0.1 + 9.8 = 49.0 m/s^2 up.
 TEST(ImuSensor, ResetWorldKeepsTheLastVelocity) {
-  auto w = cube_world(sensor_imu("<updateRateHZ>10</updateRateHZ>", 10), "imu_plugin", 10.0);
-  w->step(500);
-  w->take_outputs<ImuOut>();
-  w->reset_poses();
-  w->step(100);
-  const auto ms = w->take_outputs<ImuOut>();
+  const auto ms = fell_then_reset(sensor_imu("<updateRateHZ>10</updateRateHZ>", 10), "imu_plugin");
   ASSERT_EQ(ticks(ms), (std::vector<uint64_t>{600}));
   EXPECT_NEAR(ms[0].linear_acceleration.z(), 49.0, 1e-6);
 }
@@ -246,12 +257,7 @@ TEST(ImuModelPlugin, TurnsWorldVectorsByTheBodysRotation) {
 // The acceleration differences against the last message: updateRate 10, reset_world at 0.5 s (v = -4.9 m/s), the
 // next message at 0.6 s (v = -0.98 m/s): (-0.98 + 4.9) / 0.1 = 39.2 m/s^2 up.
 TEST(ImuModelPlugin, ResetWorldKeepsTheLastVelocity) {
-  auto w = cube_world(model_imu("<updateRate>10</updateRate>"), "imu", 10.0);
-  w->step(500);
-  w->take_outputs<ImuOut>();
-  w->reset_poses();
-  w->step(100);
-  const auto ms = w->take_outputs<ImuOut>();
+  const auto ms = fell_then_reset(model_imu("<updateRate>10</updateRate>"), "imu");
   ASSERT_EQ(ticks(ms), (std::vector<uint64_t>{600}));
   EXPECT_NEAR(ms[0].linear_acceleration.z(), 39.2, 1e-6);
 }
@@ -259,13 +265,7 @@ TEST(ImuModelPlugin, ResetWorldKeepsTheLastVelocity) {
 // Its last message follows car's rate grid while nobody subscribes (COMPAT-plugins p3d "When"): pushed along x for
 // 0.3 s, then falling, the first message after a subscription (updateRate 100, at 0.31 s) reads g only.
 TEST(ImuModelPlugin, DifferencesAgainstTheGridWhileNobodySubscribes) {
-  auto w = cube_world(model_imu("<updateRate>100</updateRate>"), "imu", 10.0);
-  w->set_plugin_active("cube", "imu", false);
-  w->apply_wrench({"cube", "base"}, Eigen::Vector3d(1, 0, 0), Eigen::Vector3d::Zero(), 0.0, 0.2995);
-  w->step(300);
-  w->set_plugin_active("cube", "imu", true);
-  w->step(10);
-  const auto ms = w->take_outputs<ImuOut>();
+  const auto ms = pushed_then_subscribed(model_imu("<updateRate>100</updateRate>"), "imu");
   ASSERT_EQ(ticks(ms), (std::vector<uint64_t>{310}));
   EXPECT_NEAR((ms[0].linear_acceleration - Eigen::Vector3d(0, 0, -9.8)).norm(), 0.0, 1e-6);
 }
