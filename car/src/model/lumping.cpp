@@ -6,9 +6,72 @@
 
 #include <algorithm>
 #include <functional>
+#include <cmath>
 #include <sstream>
 
+#include <urdf_model/pose.h>
+
+#include "xml_util.hpp"
+
 namespace car_sim {
+
+// ---- plug-in offsets at a lumping ----------------------------------------------------------------------------
+
+namespace detail {
+namespace {
+
+// "x y z" as sdformat's ParseVector3 reads it, times scale; (0, 0, 0) unless three numbers.
+Eigen::Vector3d parse_vector3(const std::string& text, double scale) {
+  const auto v = detail::parse_numbers(text, 3);
+  if (!v) return Eigen::Vector3d::Zero();
+  return Eigen::Vector3d((*v)[0], (*v)[1], (*v)[2]) * scale;
+}
+
+// Three numbers as sdformat writes them: an ostream's defaults (6 significant digits).
+std::string format3(double a, double b, double c) {
+  std::ostringstream o;
+  o << a << " " << b << " " << c;
+  return o.str();
+}
+
+}  // namespace
+
+// sdformat 9's ReduceSDFExtensionPluginFrameReplace, for one element of a robot-level plug-in: when `element`
+// names the lumped link it names the parent, and the plug-in's offsets are rewritten, as sdformat 9 does it (its
+// arithmetic kept, docs/COMPAT-spawn.md 11): the offset starts as the identity, takes xyzOffset [m] and rpyOffset
+// read as *degrees* where given, goes through inverseTransformToParentFrame with the joint's origin T (position
+// R^-1 p - t, rotation R^-1 q), and is written back as xyzOffset and rpyOffset [rad], appended.
+void plugin_frame_replace(ParamList* params, const std::string& element, const std::string& link,
+                          const std::string& parent, const Eigen::Isometry3d& T) {
+  auto first = [&](const std::string& key) {
+    return std::find_if(params->begin(), params->end(), [&](const auto& kv) { return kv.first == key; });
+  };
+  auto e = first(element);
+  if (e == params->end() || e->second != link) return;
+  params->erase(e);
+  params->emplace_back(element, parent);
+  Eigen::Vector3d pos = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond rot = Eigen::Quaterniond::Identity();
+  if (auto xyz = first("xyzOffset"); xyz != params->end()) {
+    pos = parse_vector3(xyz->second, 1.0);
+    params->erase(xyz);
+  }
+  if (auto rpy = first("rpyOffset"); rpy != params->end()) {
+    const Eigen::Vector3d r = parse_vector3(rpy->second, M_PI / 180.0);
+    rot = Eigen::Quaterniond(detail::rpy_to_matrix(r.x(), r.y(), r.z()));
+    params->erase(rpy);
+  }
+  const Eigen::Quaterniond inverse = Eigen::Quaterniond(T.linear()).conjugate();
+  pos = inverse * pos - T.translation();
+  rot = inverse * rot;
+  // urdfdom's Rotation::getRPY, as sdformat writes it
+  double roll, pitch, yaw;
+  urdf::Rotation(rot.x(), rot.y(), rot.z(), rot.w()).getRPY(roll, pitch, yaw);
+  params->emplace_back("xyzOffset", format3(pos.x(), pos.y(), pos.z()));
+  params->emplace_back("rpyOffset", format3(roll, pitch, yaw));
+}
+
+}  // namespace detail
 
 // ---- RobotModel helpers for lumped links -----------------------------------------------------------------------
 
@@ -159,10 +222,11 @@ void lump_fixed_joints(RobotModel* m, const std::map<std::string, int>& lines) {
       j.parent = P.name;
       j.origin = T * j.origin;
     }
-    // robot-level plug-ins naming L as their body or frame name P (ReduceSDFExtensionPluginFrameReplace)
-    for (auto& p : m->plugins)
-      for (auto& kv : p.params)
-        if ((kv.first == "bodyName" || kv.first == "frameName") && kv.second == L.name) kv.second = P.name;
+    // robot-level plug-ins naming L as their body or frame name P, their offsets rewritten
+    for (auto& p : m->plugins) {
+      plugin_frame_replace(&p.params, "bodyName", L.name, P.name, T);
+      plugin_frame_replace(&p.params, "frameName", L.name, P.name, T);
+    }
 
     LumpedLink e;
     e.name = L.name;

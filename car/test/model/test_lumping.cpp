@@ -198,3 +198,61 @@ TEST(WorldAnchor, FixedJointFromWorldAnchorsAndIsNotLumped) {
   EXPECT_TRUE(m.lumped.empty());
   EXPECT_TRUE(diag(m, "world-anchor", "joint[fix]"));
 }
+
+// ---- a robot-level plug-in's offsets at a lumping: sdformat 9's ReduceSDFExtensionPluginFrameReplace ----------
+
+namespace {
+
+// base with imu_link on a fixed joint at `origin` (an <origin> element), and one robot-level plug-in with `keys`:
+// the plug-in's keys after loading.
+ParamList plugin_after_lumping(const std::string& origin, const std::string& keys) {
+  const RobotModel m = load_urdf_string(
+      "<robot name='r'><link name='base'><inertial><mass value='1'/><inertia ixx='0.01' iyy='0.01' izz='0.01' "
+      "ixy='0' ixz='0' iyz='0'/></inertial></link><link name='imu_link'/><joint name='j' type='fixed'>"
+      "<parent link='base'/><child link='imu_link'/>" + origin + "</joint><gazebo><plugin name='p' "
+      "filename='libgazebo_ros_imu.so'>" + keys + "</plugin></gazebo></robot>",
+      "r.urdf");
+  return m.plugins.at(0).params;
+}
+
+}  // namespace
+
+// bodyName only, no offsets given: the offset is the identity through inverseTransformToParentFrame,
+// R^-1 (0, 0, 0) - t = -t.
+TEST(Lumping, PluginOffsetIsMinusTheJointsTranslation) {
+  const ParamList p = plugin_after_lumping("<origin xyz='-0.032 0 0.068'/>", "<bodyName>imu_link</bodyName>");
+  EXPECT_EQ(*find_param(p, "bodyName"), "base");
+  EXPECT_EQ(*find_param(p, "xyzOffset"), "0.032 0 -0.068");
+  // urdfdom's getRPY: pitch = asin(-2 (xz - wy)) = asin(-0) = -0
+  EXPECT_EQ(*find_param(p, "rpyOffset"), "0 -0 0");
+}
+
+// bodyName and frameName both name the link (TurtleBot3's IMU): the rewrite runs twice, the second reading the
+// first's result, so the translation counts twice.
+TEST(Lumping, PluginOffsetIsRewrittenForBodyNameAndAgainForFrameName) {
+  const ParamList p = plugin_after_lumping("<origin xyz='-0.032 0 0.068'/>",
+                                           "<bodyName>imu_link</bodyName><frameName>imu_link</frameName>");
+  EXPECT_EQ(*find_param(p, "frameName"), "base");
+  EXPECT_EQ(*find_param(p, "xyzOffset"), "0.064 0 -0.136");
+}
+
+// A turned joint: the rotation written is the joint's inverse, yaw -90 deg, in radians to 6 digits.
+TEST(Lumping, PluginRotationIsTheJointsInverse) {
+  const ParamList p = plugin_after_lumping("<origin rpy='0 0 1.5707963267948966'/>", "<bodyName>imu_link</bodyName>");
+  EXPECT_EQ(*find_param(p, "rpyOffset"), "0 0 -1.5708");
+}
+
+// sdformat 9 reads a given rpyOffset in degrees: 90 becomes pi/2.
+TEST(Lumping, PluginRpyOffsetIsReadInDegrees) {
+  const ParamList p =
+      plugin_after_lumping("<origin xyz='0 0 0'/>", "<bodyName>imu_link</bodyName><rpyOffset>0 0 90</rpyOffset>");
+  EXPECT_EQ(*find_param(p, "rpyOffset"), "0 -0 1.5708");
+}
+
+// A plug-in naming another link keeps its keys as written.
+TEST(Lumping, PluginOfAnotherLinkKeepsItsOffsets) {
+  const ParamList p = plugin_after_lumping("<origin xyz='1 2 3'/>", "<bodyName>base</bodyName><xyzOffset>0.5 0 0"
+                                                                    "</xyzOffset>");
+  EXPECT_EQ(*find_param(p, "xyzOffset"), "0.5 0 0");
+  EXPECT_EQ(find_param(p, "rpyOffset"), nullptr);
+}
