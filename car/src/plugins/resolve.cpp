@@ -129,7 +129,8 @@ PluginConfig resolve_one(const RobotModel& m, const PluginKind& kind, const Plug
   ResolveContext ctx(m, p, s, &c, diags);
   if (s) {
     if (std::find(kind.sensor_types.begin(), kind.sensor_types.end(), s->type) == kind.sensor_types.end())
-      ctx.fail("", p.filename + " needs a sensor of type " + kind.sensor_types.front() + ", not '" + s->type + "'");
+      // upstream's sensor plug-ins check their parent's type in Load and log or throw: the model loads without it
+      ctx.drop("", p.filename + " needs a sensor of type " + kind.sensor_types.front() + ", not '" + s->type + "'");
     resolve_keys(m, kind.sensor_schema, sensor_params(*s), "sensor[" + s->name + "]", s->line, &c.params);
   }
   resolve_keys(m, kind.schema, p.params, ctx.where(""), p.line, &c.params);

@@ -31,10 +31,11 @@ class F3d : public Plugin {
 
 void finish(ResolveContext& ctx) {
   const PluginConfig& c = ctx.config();
-  if (c.param("bodyName").from_default) ctx.fail("bodyName", "f3d needs <bodyName>, the link to report");
+  // upstream's Load logs these and returns: the plug-in is inert, the model loads
+  if (c.param("bodyName").from_default) ctx.drop("bodyName", "f3d plugin missing <bodyName>, cannot proceed");
   if (!ctx.model().find_link(c.text("bodyName")))
-    ctx.fail("bodyName", "link '" + c.text("bodyName") + "' not found in the model");
-  if (c.param("topicName").from_default) ctx.fail("topicName", "f3d needs <topicName>");
+    ctx.drop("bodyName", "gazebo_ros_f3d plugin error: bodyName: " + c.text("bodyName") + " does not exist");
+  if (c.param("topicName").from_default) ctx.drop("topicName", "f3d plugin missing <topicName>, cannot proceed");
   ctx.config().link = c.text("bodyName");
 }
 

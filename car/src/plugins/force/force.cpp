@@ -33,10 +33,11 @@ class Force : public Plugin, public WrenchCommand {
 
 void finish(ResolveContext& ctx) {
   const PluginConfig& c = ctx.config();
-  if (c.param("bodyName").from_default) ctx.fail("bodyName", "force needs <bodyName>, the link to push");
+  // upstream's Load logs these and returns: the plug-in is inert, the model loads
+  if (c.param("bodyName").from_default) ctx.drop("bodyName", "force plugin missing <bodyName>, cannot proceed");
   if (!ctx.model().find_link(c.text("bodyName")))
-    ctx.fail("bodyName", "link '" + c.text("bodyName") + "' not found in the model");
-  if (c.param("topicName").from_default) ctx.fail("topicName", "force needs <topicName>");
+    ctx.drop("bodyName", "gazebo_ros_force plugin error: link named: " + c.text("bodyName") + " does not exist");
+  if (c.param("topicName").from_default) ctx.drop("topicName", "force plugin missing <topicName>, cannot proceed");
   ctx.config().link = c.text("bodyName");
 }
 

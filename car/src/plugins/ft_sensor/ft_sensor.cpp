@@ -48,13 +48,16 @@ class FtSensor : public Plugin {
 
 void finish(ResolveContext& ctx) {
   const PluginConfig& c = ctx.config();
-  if (c.param("jointName").from_default) ctx.fail("jointName", "ft_sensor needs <jointName>");
+  // upstream's Load logs these and returns: the plug-in is inert, the model loads
+  if (c.param("jointName").from_default) ctx.drop("jointName", "ft_sensor plugin missing <jointName>, cannot proceed");
   const Joint* j = ctx.model().find_joint(c.text("jointName"));
-  if (!j) ctx.fail("jointName", "joint '" + c.text("jointName") + "' not found in the model");
+  if (!j)
+    ctx.drop("jointName", "gazebo_ros_ft_sensor plugin error: jointName: " + c.text("jointName") + " does not exist");
+  // (Gazebo's URDF reader lumps a fixed joint away, so upstream finds no such joint either)
   if (j->type == JointType::Fixed)
-    ctx.fail("jointName", "joint '" + j->name + "' is fixed: car merges the links of a fixed joint into one body, "
+    ctx.drop("jointName", "joint '" + j->name + "' is fixed: car merges the links of a fixed joint into one body, "
                           "so it has no reaction to measure (make it a revolute joint with zero limits)");
-  if (c.param("topicName").from_default) ctx.fail("topicName", "ft_sensor needs <topicName>");
+  if (c.param("topicName").from_default) ctx.drop("topicName", "ft_sensor plugin missing <topicName>, cannot proceed");
   if (c.number("gaussianNoise") < 0) ctx.fail("gaussianNoise", "must be >= 0");
   warn_negative_rate(ctx, "updateRate");
   ctx.config().link = j->child;

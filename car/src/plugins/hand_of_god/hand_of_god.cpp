@@ -93,9 +93,9 @@ class HandOfGod : public Plugin, public PoseTarget {
 
 void finish(ResolveContext& ctx) {
   const PluginConfig& c = ctx.config();
-  if (c.param("linkName").from_default) ctx.fail("linkName", "hand_of_god needs <linkName>");
-  if (!ctx.model().find_link(c.text("linkName")))
-    ctx.fail("linkName", "link '" + c.text("linkName") + "' not found in the model");
+  // upstream's Load logs these and returns: the plug-in is inert, the model loads
+  if (c.param("linkName").from_default) ctx.drop("linkName", "The hand-of-god plugin requires a `linkName` parameter tag");
+  if (!ctx.model().find_link(c.text("linkName"))) ctx.drop("linkName", "Floating link not found");
   if (c.number("kl") < 0) ctx.fail("kl", "must be >= 0");
   if (c.number("ka") < 0) ctx.fail("ka", "must be >= 0");
   ctx.config().link = c.text("linkName");

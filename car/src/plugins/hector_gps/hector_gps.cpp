@@ -87,7 +87,8 @@ void finish(ResolveContext& ctx) {
   PluginConfig& c = ctx.config();
   if (c.text("bodyName").empty()) ctx.set("bodyName", ctx.model().root_link);
   const std::string body = c.text("bodyName");
-  if (!ctx.model().find_link(body)) ctx.fail("bodyName", "link '" + body + "' not found in the model");
+  // upstream's Load logs this and returns: the plug-in is inert, the model loads
+  if (!ctx.model().find_link(body)) ctx.drop("bodyName", "GazeboRosGps plugin error: bodyName: " + body + " does not exist");
   c.link = body;
   if (std::abs(c.number("referenceLatitude")) >= 90) ctx.fail("referenceLatitude", "must be inside (-90, 90) deg");
   hector::finish_timer(ctx);

@@ -60,7 +60,8 @@ void finish(ResolveContext& ctx) {
   PluginConfig& c = ctx.config();
   if (c.text("bodyName").empty()) ctx.set("bodyName", ctx.model().root_link);
   const std::string body = c.text("bodyName");
-  if (!ctx.model().find_link(body)) ctx.fail("bodyName", "link '" + body + "' not found in the model");
+  // upstream's Load logs this and returns: the plug-in is inert, the model loads
+  if (!ctx.model().find_link(body)) ctx.drop("bodyName", "GazeboRosMagnetic plugin error: bodyName: " + body + " does not exist");
   c.link = body;
   if (c.text("frameId").empty()) ctx.set("frameId", body);
   hector::finish_timer(ctx);

@@ -39,7 +39,8 @@ constexpr ParamType N = ParamType::Number;
 class JointStatePublisher : public Plugin {
  public:
   explicit JointStatePublisher(const PluginConfig& c)
-      : names_(split_joint_names(c.text("jointName"))), rate_(c.number("updateRate")) {}
+      : names_(c.param("jointName").from_default ? std::vector<std::string>{} : split_joint_names(c.text("jointName"))),
+        rate_(c.number("updateRate")) {}
 
   double update_rate() const override { return rate_; }
   // gazebo_ros's UpdateChild rule (UpdateClock)
@@ -66,12 +67,16 @@ class JointStatePublisher : public Plugin {
 
 void finish(ResolveContext& ctx) {
   const PluginConfig& c = ctx.config();
-  if (c.param("jointName").from_default) ctx.fail("jointName", "joint_state_publisher needs <jointName>");
-  for (const auto& n : split_joint_names(c.text("jointName"))) {
-    const Joint* j = ctx.model().find_joint(n);
-    if (!j) ctx.fail("jointName", "joint '" + n + "' not found in the model");
-    if (j->type == JointType::Fixed) ctx.fail("jointName", "joint '" + n + "' is fixed; it has no state");
-  }
+  // without <jointName> upstream's ROS_ASSERT (of a string literal) passes: it publishes empty joint states
+  if (c.param("jointName").from_default)
+    ctx.warn(Severity::Warning, "jsp-no-joints", "jointName",
+             "GazeboRosJointStatePublisher Plugin missing jointNames: it publishes empty joint states");
+  else
+    for (const auto& n : split_joint_names(c.text("jointName"))) {
+      const Joint* j = ctx.model().find_joint(n);
+      if (!j) ctx.fail("jointName", "joint '" + n + "' not found in the model");
+      if (j->type == JointType::Fixed) ctx.fail("jointName", "joint '" + n + "' is fixed; it has no state");
+    }
   warn_negative_rate(ctx, "updateRate");
 }
 

@@ -15,7 +15,8 @@ constexpr ParamType T = ParamType::Text;
 constexpr ParamType Fr = ParamType::Frame;
 constexpr ParamType N = ParamType::Number;
 
-bool world_frame(const std::string& f) { return f.empty() || f == "world" || f == "map"; }
+// frameName world or map (a leading '/' already dropped): Gazebo's world frame; an empty one names no link upstream
+bool world_frame(const std::string& f) { return f == "world" || f == "map"; }
 
 class P3d : public Plugin {
  public:
@@ -68,13 +69,14 @@ class P3d : public Plugin {
 
 void finish(ResolveContext& ctx) {
   const PluginConfig& c = ctx.config();
-  if (c.param("bodyName").from_default) ctx.fail("bodyName", "p3d needs <bodyName>, the link to report");
+  // upstream's Load logs these and returns: the plug-in is inert, the model loads
+  if (c.param("bodyName").from_default) ctx.drop("bodyName", "p3d plugin missing <bodyName>, cannot proceed");
   if (!ctx.model().find_link(c.text("bodyName")))
-    ctx.fail("bodyName", "link '" + c.text("bodyName") + "' not found in the model");
-  if (c.param("topicName").from_default) ctx.fail("topicName", "p3d needs <topicName>");
+    ctx.drop("bodyName", "gazebo_ros_p3d plugin error: bodyName: " + c.text("bodyName") + " does not exist");
+  if (c.param("topicName").from_default) ctx.drop("topicName", "p3d plugin missing <topicName>, cannot proceed");
   const std::string& f = c.text("frameName");
   if (!world_frame(f) && !ctx.model().find_link(f))
-    ctx.fail("frameName", "'" + f + "' is neither world nor a link of the model");
+    ctx.drop("frameName", "gazebo_ros_p3d plugin: frameName: " + f + " does not exist, will not publish pose");
   for (const char* key : {"xyzOffset", "rpyOffset"})
     if (!detail::parse_numbers(c.text(key), 3)) ctx.fail(key, "'" + c.text(key) + "' is not 3 numbers");
   if (c.number("gaussianNoise") < 0) ctx.fail("gaussianNoise", "must be >= 0");

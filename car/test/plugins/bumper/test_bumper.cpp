@@ -108,3 +108,19 @@ TEST(Bumper, UnknownCollisionIsAnError) {
         << e.what();
   }
 }
+
+// On a sensor that is not a contact sensor, upstream's Load logs "Contact sensor parent is not of type
+// ContactSensor" and returns: the model loads without the plug-in, with a warning.
+TEST(Bumper, OnAnotherSensorTypeThePluginDoesNotLoad) {
+  const RobotModel m = load_urdf_string(
+      "<robot name='bot'><link name='body'><inertial><mass value='1'/><inertia ixx='0.1' iyy='0.1' izz='0.1' "
+      "ixy='0' ixz='0' iyz='0'/></inertial></link><gazebo reference='body'><sensor name='imu' type='imu'>"
+      "<plugin name='bumper' filename='libgazebo_ros_bumper.so'/></sensor></gazebo></robot>",
+      "bot.urdf");
+  const ModelConfig c = resolve_plugins(m);
+  EXPECT_TRUE(c.plugins.empty());
+  ASSERT_FALSE(c.diagnostics.empty());
+  EXPECT_EQ(c.diagnostics.back().code, "plugin-not-loaded");
+  EXPECT_EQ(c.diagnostics.back().message,
+            "libgazebo_ros_bumper.so needs a sensor of type contact, not 'imu'; the plug-in is not loaded");
+}

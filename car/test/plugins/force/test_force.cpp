@@ -69,7 +69,7 @@ TEST(Force, MissingBodyIsAnError) {
     w->attach_plugin("box", p);
     FAIL() << "no error";
   } catch (const LoadError& e) {
-    EXPECT_NE(std::string(e.what()).find("gazebo/plugin[bad]/bodyName: link 'nope' not found in the model"),
+    EXPECT_NE(std::string(e.what()).find("gazebo/plugin[bad]/bodyName: gazebo_ros_force plugin error: link named: nope does not exist"),
               std::string::npos)
         << e.what();
   }

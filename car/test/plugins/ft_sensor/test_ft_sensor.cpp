@@ -61,7 +61,7 @@ TEST(FtSensor, UnknownJointIsAnError) {
     w->attach_plugin("arm", p);
     FAIL() << "no error";
   } catch (const LoadError& e) {
-    EXPECT_NE(std::string(e.what()).find("gazebo/plugin[bad]/jointName: joint 'nope' not found in the model"),
+    EXPECT_NE(std::string(e.what()).find("gazebo/plugin[bad]/jointName: gazebo_ros_ft_sensor plugin error: jointName: nope does not exist"),
               std::string::npos)
         << e.what();
   }

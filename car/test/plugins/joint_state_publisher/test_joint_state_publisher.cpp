@@ -111,3 +111,18 @@ TEST(JointStatePublisher, NegativeUpdateRateIsEveryStepAndWarned) {
     if (d.element == "gazebo/plugin[jsp]/updateRate") messages.push_back(d.message);
   EXPECT_EQ(messages, std::vector<std::string>{"<updateRate> -5 is not > 0: the plug-in updates every step, as upstream"});
 }
+
+// Without <jointName> upstream's ROS_ASSERT checks a string literal and passes: empty joint states at its rate.
+TEST(JointStatePublisher, WithoutJointNameItPublishesEmptyJointStates) {
+  auto w = test_support::world_with_car(false);
+  PluginSpec p = jsp("", "10");
+  p.params.erase(p.params.begin());  // no <jointName> at all
+  w->attach_plugin("mycar", p);
+  w->set_plugin_active("mycar", "jsp", true);
+  w->take_outputs();
+  w->step(200);
+  const OutputQueue q = w->take_outputs();
+  const auto out = jsp_outputs(q);
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_TRUE(out.back()->joints.empty());
+}

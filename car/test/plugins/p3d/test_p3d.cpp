@@ -82,16 +82,33 @@ TEST(P3d, GaussianNoiseOnTheTwistHasItsStddev) {
   EXPECT_TRUE(out.back()->pose.translation().isApprox(w->model_state("mycar").pose.translation(), 1e-12));
 }
 
-TEST(P3d, UnknownFrameIsAnError) {
+// Attached alone (the node's attach), a plug-in that does not load is a LoadError with upstream's message.
+TEST(P3d, UnknownFrameIsAnErrorWhenAttached) {
   auto w = test_support::world_with_car(false);
   try {
     w->attach_plugin("mycar", p3d({{"frameName", "nowhere"}}));
     FAIL() << "no error";
   } catch (const LoadError& e) {
-    EXPECT_NE(std::string(e.what()).find("frameName: 'nowhere' is neither world nor a link of the model"),
+    EXPECT_NE(std::string(e.what()).find(
+                  "frameName: gazebo_ros_p3d plugin: frameName: nowhere does not exist, will not publish pose"),
               std::string::npos)
         << e.what();
   }
+}
+
+// In a model, upstream's Load logs and returns: the model loads without the plug-in, with a warning.
+TEST(P3d, UnknownBodyLeavesThePluginOutOfTheModel) {
+  std::string xml = test_support::car_xml(false);
+  xml.insert(xml.rfind("</robot>"), "<gazebo><plugin name='truth' filename='libgazebo_ros_p3d.so'><bodyName>nope"
+                                    "</bodyName><topicName>t</topicName></plugin></gazebo>");
+  const ModelConfig c = resolve_plugins(load_urdf_string(xml, "car"));
+  bool warned = false;
+  for (const auto& d : c.diagnostics)
+    warned = warned || (d.code == "plugin-not-loaded" && d.element == "gazebo/plugin[truth]/bodyName" &&
+                        d.message == "gazebo_ros_p3d plugin error: bodyName: nope does not exist; the plug-in is "
+                                     "not loaded");
+  EXPECT_TRUE(warned);
+  for (const auto& p : c.plugins) EXPECT_NE(p.name, "truth");
 }
 
 // Nobody subscribed until tick 105: car keeps the grid from the load (20, 40, ...) while the plug-in is off, so the
