@@ -201,6 +201,11 @@ struct OutputPort {
   bool frames_as_written = false;  // both frames exactly as written, no tf_prefix (ros_controllers)
   bool with_effort = false;        // JointStates: each joint's effort too (joint_state_controller)
   TfOrder tf = TfOrder::None;  // Odometry: also the transform frame -> child_frame
+  bool planar_position = false;  // Odometry: the message's position.z stays 0, the TF keeps it (skid steer, planar
+                                 // move: upstream's publishOdometry fills x and y only)
+  // header.frame_id only = tf::resolve(the tf_prefix parameter read in the plug-in's namespace, not searched
+  // upwards, frame); the child frame as written (p3d, f3d, ft_sensor: rosnode_->getParam("tf_prefix"))
+  bool frame_prefix_here = false;
   std::array<double, 6> pose_covariance{};   // the diagonal (x, y, z, roll, pitch, yaw)
   std::array<double, 6> twist_covariance{};
   // Lazy parts (Plugin::set_parts): the parts of the output this port's messages need while it has subscribers;

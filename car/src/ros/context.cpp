@@ -10,4 +10,10 @@ std::string tf_prefix_param(const std::string& ns) {
   return value;
 }
 
+std::string tf_prefix_here(const std::string& ns) {
+  std::string value;
+  ros::NodeHandle("/" + ns).getParam("tf_prefix", value);
+  return value;
+}
+
 }  // namespace car_ros

@@ -213,6 +213,10 @@ std::string OutputPorts::setup(const car_sim::PluginInfo& plugin, const car_sim:
     if (op.frames_as_written) {
       p.frame = op.frame;
       p.child_frame = op.child_frame;
+    } else if (op.frame_prefix_here) {
+      p.prefix = tf_prefix_here(op.ns);
+      p.frame = resolve_tf(p.prefix, op.frame);
+      p.child_frame = op.child_frame;
     } else if (op.tf_prefix) {
       p.prefix = tf_prefix_param(op.ns);
       p.frame = resolve_tf(p.prefix, op.frame);
@@ -321,6 +325,7 @@ void OutputPorts::publish(std::shared_ptr<const car_sim::Output> owned, NodeCont
         m.header.frame_id = p.frame;
         m.child_frame_id = p.child_frame;
         m.pose.pose = to_pose(o.pose);
+        if (p.port.planar_position) m.pose.pose.position.z = 0.0;
         if (o.orientation) {
           m.pose.pose.orientation.x = o.orientation->x();
           m.pose.pose.orientation.y = o.orientation->y();

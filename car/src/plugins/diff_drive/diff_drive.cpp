@@ -151,7 +151,7 @@ class DiffDrive : public Plugin, public TwistDrive {
   // The plug-in's update: odometry out (new motor targets follow in the next pre_physics).
   void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) override {
     update_due_ = true;
-    if (!cfg_.publish_tf) return;
+    // the wheels' joint states and TF go out whatever publishTf says (the odometry port then sends nothing)
     auto o = std::make_unique<OdometryOut>();
     const char* names[2] = {cfg_.left_joint.c_str(), cfg_.right_joint.c_str()};
     for (int side = 0; side < 2; ++side)
@@ -202,10 +202,13 @@ void finish(ResolveContext& ctx) {
   if (c.number("wheelAcceleration") < 0) ctx.fail("wheelAcceleration", "must be >= 0 (0 = unlimited)");
   warn_negative_rate(ctx, "updateRate");
   const std::string& src = c.text("odometrySource");
-  if (src != "world" && src != "encoder") ctx.fail("odometrySource", "'" + src + "' is neither 'world' nor 'encoder'");
+  // GazeboRos::getParameter with options: a value not in the map is warned and the default (world) kept
+  if (src != "world" && src != "encoder")
+    ctx.warn(Severity::Warning, "odometry-source", "odometrySource",
+             "<odometrySource> no matching key to " + src + ": world odometry, as upstream");
   if (!c.flag("publishTf"))
     ctx.warn(Severity::Warning, "publish-tf-off", "publishTf",
-             "publishTf false: like gazebo_ros, no /odom is published at all");
+             "publishTf false: like gazebo_ros, no odometry message and no odometry TF at all");
 }
 
 }  // namespace
@@ -243,7 +246,10 @@ const PluginKind& diff_drive_kind() {
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
       std::vector<OutputPort> ports = {
           odometry_port(c, robot, "odometryTopic", 100, c.flag("publishOdomTF") ? TfOrder::After : TfOrder::None)};
-      if (!c.flag("publishTf")) ports[0].topic.clear();
+      if (!c.flag("publishTf")) {
+        ports[0].topic.clear();
+        ports[0].tf = TfOrder::None;
+      }
       if (c.flag("publishWheelJointState")) ports.push_back(joint_states_port(c, robot, 10));
       if (c.flag("publishWheelTF")) ports.push_back(wheel_tf_port(c, robot));
       return ports;

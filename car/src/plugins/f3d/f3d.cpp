@@ -57,7 +57,9 @@ const PluginKind& f3d_kind() {
     k.output_group = "wrenches";
     // geometry_msgs/WrenchStamped on topicName, header frame frameName, queue 1
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
-      return std::vector<OutputPort>{sensor_port(c, robot, "wrench", SampleType::Wrench, "topicName", c.text("frameName"), 1)};
+      OutputPort p = sensor_port(c, robot, "wrench", SampleType::Wrench, "topicName", c.text("frameName"), 1);
+      p.frame_prefix_here = true;  // frame_name_ = tf::resolve(getParam("tf_prefix"), frameName)
+      return std::vector<OutputPort>{p};
     };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string&, uint64_t) -> std::unique_ptr<Plugin> {

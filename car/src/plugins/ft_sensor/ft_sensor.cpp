@@ -82,7 +82,9 @@ const PluginKind& ft_sensor_kind() {
     k.output_group = "wrenches";
     // geometry_msgs/WrenchStamped on topicName, header frame the joint's child link, queue 1
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
-      return std::vector<OutputPort>{sensor_port(c, robot, "wrench", SampleType::Wrench, "topicName", c.link, 1)};
+      OutputPort p = sensor_port(c, robot, "wrench", SampleType::Wrench, "topicName", c.link, 1);
+      p.frame_prefix_here = true;  // frame_name_ = tf::resolve(getParam("tf_prefix"), the child link)
+      return std::vector<OutputPort>{p};
     };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {

@@ -114,7 +114,7 @@ const PluginKind& p3d_kind() {
     k.ignored = {{"alwaysOn", ""}};
     k.lazy = true;
     k.output_group = "poses";
-    // nav_msgs/Odometry on topicName (queue 100): frameName -> bodyName, gaussianNoise^2 on every diagonal entry
+    // nav_msgs/Odometry on topicName (queue 100): frameName (tf_prefix of the namespace) -> bodyName, gaussianNoise^2 on every diagonal entry
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
       OutputPort p;
       p.name = "odom";
@@ -125,6 +125,7 @@ const PluginKind& p3d_kind() {
       p.frame = c.text("frameName");
       p.child_frame = c.text("bodyName");
       p.tf_prefix = false;
+      p.frame_prefix_here = true;
       const double variance = c.number("gaussianNoise") * c.number("gaussianNoise");
       p.pose_covariance.fill(variance);
       p.twist_covariance.fill(variance);

@@ -125,7 +125,9 @@ const PluginKind& planar_move_kind() {
     k.inputs = topic_input("cmd_vel", InputType::Twist, "commandTopic", 1, kLinearX | kLinearY | kAngularZ);
     // odom with its TF sent first
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
-      return std::vector<OutputPort>{odometry_port(c, robot, "odometryTopic", 1, TfOrder::Before)};
+      OutputPort odom = odometry_port(c, robot, "odometryTopic", 1, TfOrder::Before);
+      odom.planar_position = true;  // publishOdometry fills position x and y only; the TF carries z
+      return std::vector<OutputPort>{odom};
     };
     k.make = [](const PluginConfig& c, const std::string&, uint64_t) -> std::unique_ptr<Plugin> {
       return std::make_unique<PlanarMove>(c);

@@ -146,6 +146,7 @@ const PluginKind& skid_steer_drive_kind() {
       OutputPort odom = odometry_port(c, robot, "odometryTopic", 1, c.flag("broadcastTF") ? TfOrder::Before : TfOrder::None,
                                       c.number("covariance_x"), c.number("covariance_y"), c.number("covariance_yaw"));
       odom.twist_covariance = odom.pose_covariance;
+      odom.planar_position = true;  // publishOdometry fills position x and y only; the TF carries z
       return std::vector<OutputPort>{odom};
     };
     k.make = [](const PluginConfig& c, const std::string&, uint64_t) -> std::unique_ptr<Plugin> {

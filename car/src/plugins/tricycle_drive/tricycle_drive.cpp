@@ -147,11 +147,15 @@ void finish(ResolveContext& ctx) {
   }
   for (const char* key : {"actuatedWheelDiameter", "encoderWheelDiameter", "encoderWheelSeparation"})
     check_wheel_length(ctx, key);
-  for (const char* key : {"wheelTorque", "updateRate", "wheelAcceleration", "wheelSpeedTolerance", "steeringSpeed",
+  for (const char* key : {"wheelTorque", "wheelAcceleration", "wheelSpeedTolerance", "steeringSpeed",
                           "steeringAngleTolerance"})
     if (c.number(key) < 0) ctx.fail(key, "must be >= 0");
+  warn_negative_rate(ctx, "updateRate");
   const std::string& src = c.text("odometrySource");
-  if (src != "world" && src != "encoder") ctx.fail("odometrySource", "'" + src + "' is neither 'world' nor 'encoder'");
+  // GazeboRos::getParameter with options: a value not in the map is warned and the default (world) kept
+  if (src != "world" && src != "encoder")
+    ctx.warn(Severity::Warning, "odometry-source", "odometrySource",
+             "<odometrySource> no matching key to " + src + ": world odometry, as upstream");
 }
 
 }  // namespace

@@ -112,3 +112,40 @@ TEST(DiffDrive, ThirtyHertzUpdatesByUpdateChildsClock) {
     if (dynamic_cast<const OdometryOut*>(o.get())) ticks.push_back(o->tick);
   EXPECT_EQ(ticks, (std::vector<uint64_t>{33, 66, 99, 133, 166, 199}));
 }
+
+namespace {
+
+// The seed car with `keys` added to its diff drive plug-in.
+std::unique_ptr<World> car_with_drive_keys(const std::string& keys) {
+  std::string xml = test_support::car_xml(false);
+  xml.insert(xml.find("<updateRate>100.0</updateRate>"), keys);
+  auto w = std::make_unique<World>(empty_world());
+  w->spawn(load_urdf_string(xml, "car"), "mycar", at(0, 0, 0));
+  return w;
+}
+
+}  // namespace
+
+// publishTf false silences the odometry (message and TF) only: upstream's three checks in UpdateChild are
+// independent, so the wheels' joint states still go out.
+TEST(DiffDrive, PublishTfFalseKeepsTheWheelJointStates) {
+  auto w = car_with_drive_keys("<publishTf>false</publishTf><publishWheelJointState>true</publishWheelJointState>");
+  const PluginInfo p = w->plugins()[0];
+  ASSERT_GE(p.outputs.size(), 2u);
+  EXPECT_EQ(p.outputs[0].topic, "");
+  EXPECT_EQ(p.outputs[0].tf, TfOrder::None);
+  EXPECT_EQ(p.outputs[1].type, SampleType::JointStates);
+  w->step(100);
+  const auto outs = w->take_outputs();
+  ASSERT_FALSE(outs.empty());
+  EXPECT_NE(outs.back()->joint_states_sample(), nullptr);
+}
+
+// An odometrySource upstream's options map lacks is warned, and the default kept: world odometry.
+TEST(DiffDrive, UnknownOdometrySourceIsWorldWithAWarning) {
+  auto w = car_with_drive_keys("<odometrySource>1</odometrySource>");
+  std::vector<std::string> messages;
+  for (const Diagnostic& d : w->robot("mycar").config.diagnostics)
+    if (d.code == "odometry-source") messages.push_back(d.message);
+  EXPECT_EQ(messages, std::vector<std::string>{"<odometrySource> no matching key to 1: world odometry, as upstream"});
+}

@@ -115,3 +115,12 @@ TEST(PlanarMove, NegativeOdometryRateIsNoOdometryAndWarned) {
     if (d.element == "gazebo/plugin[move]/odometryRate") messages.push_back(d.message);
   EXPECT_EQ(messages, std::vector<std::string>{"<odometryRate> -1 is not > 0: no odometry, as upstream"});
 }
+
+// publishOdometry fills position x and y only (z stays 0 in the message); the TF carries the pose's z.
+TEST(PlanarMove, OdometryMessageIsPlanar) {
+  auto w = world_with("<odometryRate>20</odometryRate>");
+  const PluginInfo p = w->plugins()[0];
+  ASSERT_EQ(p.outputs.size(), 1u);
+  EXPECT_TRUE(p.outputs[0].planar_position);
+  EXPECT_EQ(p.outputs[0].tf, TfOrder::Before);
+}

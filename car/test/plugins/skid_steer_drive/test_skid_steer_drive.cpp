@@ -102,3 +102,12 @@ TEST(SkidSteer, ThirtyHertzUpdatesByUpdateChildsClock) {
   for (const auto& o : w.take_outputs()) ticks.push_back(o->tick);
   EXPECT_EQ(ticks, (std::vector<uint64_t>{33, 66, 99, 133, 166, 199}));
 }
+
+// publishOdometry fills position x and y only (z stays 0 in the message); the TF carries the pose's z.
+TEST(SkidSteer, OdometryMessageIsPlanar) {
+  World w(empty_world());
+  w.spawn(load_urdf_string(skid_robot(""), "skid.urdf"), "skid", at(0, 0, 0));
+  const PluginInfo p = w.plugins()[0];
+  ASSERT_EQ(p.outputs.size(), 1u);
+  EXPECT_TRUE(p.outputs[0].planar_position);
+}

@@ -135,3 +135,15 @@ TEST(Tricycle, RestartsItsClockAtAResetThatKeepsTime) {
   for (const auto& o : w.take_outputs()) ticks.push_back(o->tick);
   EXPECT_EQ(ticks, (std::vector<uint64_t>{183, 216}));
 }
+
+// A negative updateRate: upstream's update_period_ is 0 (every step); car the same, with a warning.
+TEST(Tricycle, NegativeUpdateRateIsEveryStepAndWarned) {
+  World w(empty_world());
+  w.spawn(load_urdf_string(tricycle("<updateRate>-5</updateRate>"), "tri.urdf"), "tri", at(0, 0, 0));
+  w.step(10);
+  EXPECT_EQ(w.take_outputs().size(), 10u);
+  std::vector<std::string> messages;
+  for (const Diagnostic& d : w.robot("tri").config.diagnostics)
+    if (d.element == "gazebo/plugin[tri]/updateRate") messages.push_back(d.message);
+  EXPECT_EQ(messages, std::vector<std::string>{"<updateRate> -5 is not > 0: the plug-in updates every step, as upstream"});
+}
