@@ -35,17 +35,18 @@ class Laser : public Plugin {
     proto_.angle_min = static_cast<float>(a);
     proto_.angle_max = static_cast<float>(b);
     proto_.angle_increment = n > 1 ? static_cast<float>((b - a) / (n - 1)) : 0.f;
-    a_ = a;
+    // one ray looks straight ahead (MultiRayShape::Init); the message keeps angle_min as given
+    a_ = n > 1 ? a : 0.0;
     inc_ = n > 1 ? (b - a) / (n - 1) : 0.0;
     proto_.range_min = static_cast<float>(c.number("ray/range/min"));
     proto_.range_max = static_cast<float>(c.number("ray/range/max"));
     gaussian_ = c.text("ray/noise/type") == "gaussian";
     mean_ = c.number("ray/noise/mean");
     stddev_ = c.number("ray/noise/stddev");
-    // ray i at a + i (b - a) / (n - 1), in the sensor's x-y plane
+    // ray i at a + i (b - a) / (n - 1) (0 for one ray), in the sensor's x-y plane
     dirs_.resize(3 * static_cast<size_t>(n));
     for (int i = 0; i < n; ++i) {
-      const double th = n > 1 ? a + i * (b - a) / (n - 1) : a;
+      const double th = n > 1 ? a + i * (b - a) / (n - 1) : 0.0;
       dirs_[3 * i] = static_cast<float>(std::cos(th));
       dirs_[3 * i + 1] = static_cast<float>(std::sin(th));
       dirs_[3 * i + 2] = 0.f;
@@ -173,13 +174,13 @@ RayGrid::RayGrid(const PluginConfig& c) {
   hits_.resize(size());
 }
 
-double RayGrid::yaw(int i) const { return nh_ > 1 ? hmin_ + i * (hmax_ - hmin_) / (nh_ - 1) : hmin_; }
-double RayGrid::pitch(int j) const { return nv_ > 1 ? vmin_ + j * (vmax_ - vmin_) / (nv_ - 1) : vmin_; }
+double RayGrid::yaw(int i) const { return nh_ > 1 ? hmin_ + i * (hmax_ - hmin_) / (nh_ - 1) : 0.0; }
+double RayGrid::pitch(int j) const { return nv_ > 1 ? vmin_ + j * (vmax_ - vmin_) / (nv_ - 1) : 0.0; }
 
 const std::vector<RayHit>& RayGrid::cast(const StepContext& ctx, const Eigen::Isometry3d& pose) {
   // one row in the sensor's x-y plane is a planar fan (car's kernel); other grids go through Embree
   if (nv_ == 1 && pitch(0) == 0.0) {
-    ctx.world->rays().cast_fan(pose.translation(), pose.linear(), dirs_.data(), size(), hmin_,
+    ctx.world->rays().cast_fan(pose.translation(), pose.linear(), dirs_.data(), size(), yaw(0),
                                nh_ > 1 ? (hmax_ - hmin_) / (nh_ - 1) : 0.0, rmin_, rmax_, hits_.data());
     return hits_;
   }

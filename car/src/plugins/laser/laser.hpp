@@ -22,7 +22,8 @@ const std::vector<ParamDef>& ray_sensor_schema();
 void finish_ray(ResolveContext& ctx);
 
 // The ray sensor's grid: n_h x n_v rays (samples x resolution per axis), ray (i, j) at index i + j n_h with yaw
-// h_i and pitch v_j [rad]; direction (cos v cos h, cos v sin h, sin v) in the sensor frame (up for v > 0).
+// h_i and pitch v_j [rad]; direction (cos v cos h, cos v sin h, sin v) in the sensor frame (up for v > 0). An axis
+// of one sample looks straight ahead (0), whatever its min_angle, as Gazebo's MultiRayShape::Init casts it.
 class RayGrid {
  public:
   explicit RayGrid(const PluginConfig& c);
@@ -31,6 +32,8 @@ class RayGrid {
   int size() const { return nh_ * nv_; }
   double yaw(int i) const;    // [rad]
   double pitch(int j) const;  // [rad]
+  double yaw_min() const { return hmin_; }    // [rad] <horizontal><min_angle>
+  double pitch_min() const { return vmin_; }  // [rad] <vertical><min_angle>
   float range_min() const { return rmin_; }
   float range_max() const { return rmax_; }
   // Casts every ray from the sensor frame (link pose x sensor pose); hits from range.min to range.max.

@@ -39,7 +39,8 @@ class Velodyne : public Plugin {
     o->points.reserve(3 * hits.size());
     std::normal_distribution<double> gauss(0.0, noise_ != 0 ? std::abs(noise_) : 1.0);
     for (int i = 0; i < grid_.nh(); ++i) {
-      const double y = grid_.yaw(i);
+      // the plug-in's own angles: min_angle for an axis of one sample (the ray itself looks ahead)
+      const double y = grid_.nh() > 1 ? grid_.yaw(i) : grid_.yaw_min();
       for (int j = 0; j < grid_.nv(); ++j) {
         const RayHit& h = hits[i + j * grid_.nh()];
         // no hit reads +inf and falls outside the band
@@ -48,7 +49,7 @@ class Velodyne : public Plugin {
         if (rmin_ >= r || r >= rmax_ || intensity < min_intensity_) continue;
         if (noise_ != 0.0) r += gauss(rng_);
         if (!(rmin_ < r && r < rmax_)) continue;
-        const double p = grid_.pitch(j);
+        const double p = grid_.nv() > 1 ? grid_.pitch(j) : grid_.pitch_min();
         o->points.push_back(static_cast<float>(r * std::cos(p) * std::cos(y)));
         o->points.push_back(static_cast<float>(r * std::cos(p) * std::sin(y)));
         o->points.push_back(static_cast<float>(r * std::sin(p)));

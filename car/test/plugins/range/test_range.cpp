@@ -103,3 +103,14 @@ TEST(Range, ZeroSamplesIsALoadErrorNamingTheKey) {
     EXPECT_NE(std::string(e.what()).find("samples must be >= 1"), std::string::npos) << e.what();
   }
 }
+
+// An axis of one sample looks straight ahead whatever its min_angle (Gazebo's MultiRayShape::Init: yaw and pitch
+// 0 for one sample): one ray with min_angle -0.5 reads the perpendicular 1.9 m, not 1.9 / cos 0.5 = 2.17 m.
+TEST(Range, OneSampleLooksStraightAhead) {
+  const std::string one = ray_sensor(
+      "ray", "sonar", "0.1 0 0.4 0 0 0", scan_axis(1, -0.5, 0.5), scan_axis(1, -0.3, 0.3), 0.02, 3.0,
+      "<plugin name='sonar_plugin' filename='libgazebo_ros_range.so'><topicName>sonar</topicName>"
+      "<frameName>sonar_link</frameName></plugin>");
+  auto w = world_with_cube(wall_world(), one);
+  EXPECT_NEAR(one_range(*w).range, to_wall(*w), 1e-4);
+}
