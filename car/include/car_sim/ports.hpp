@@ -219,8 +219,8 @@ struct OutputPort {
   std::array<double, 3> orientation_covariance{};
   std::array<double, 3> angular_velocity_covariance{};
   std::array<double, 3> linear_acceleration_covariance{};
-  // At most one message per period [s] of sim time by PeriodGate's rule (gazebo_ros_range's updateRate); 0 = every
-  // sample.
+  // At most one message per period [s] of sim time by PeriodGate's rule (gazebo_ros_range's updateRate, the camera's
+  // images: throttle_images); 0 = every sample.
   double min_period = 0.0;
 };
 

@@ -58,6 +58,8 @@ void OutputPorts::publish_image(Port& p, const std::shared_ptr<const car_sim::Ou
   switch (p.port.type) {
     case T::Image: {
       if (!listened || !s.image) return;
+      // at most one per period of sim time where the kind throttles its images (PeriodGate, as camera_info)
+      if (!p.gate.due(static_cast<int64_t>(stamp.toNSec()))) return;
       node.publish(p.pub, frame_view<ImageView>(out, std::move(s), p.frame, stamp));
       return;
     }

@@ -566,6 +566,13 @@ std::vector<OutputPort> camera_ports(const PluginConfig& c, const std::string& r
   return {image, info_port(c, robot, base, "camera_info", c.text("cameraInfoTopicName"), frame, baseline)};
 }
 
+void throttle_images(std::vector<OutputPort>* ports) {
+  // each image takes its camera_info's period (the port after it)
+  for (size_t i = 0; i + 1 < ports->size(); ++i)
+    if ((*ports)[i].type == SampleType::Image && (*ports)[i + 1].type == SampleType::CameraInfo)
+      (*ports)[i].min_period = (*ports)[i + 1].image.period;
+}
+
 std::vector<OutputPort> depth_camera_ports(const PluginConfig& c, const std::string& robot) {
   const std::string base = camera_base(c, robot);
   std::vector<OutputPort> ports = camera_ports(c, robot, "", 0, c.number("hackBaseline"));
@@ -603,7 +610,9 @@ const PluginKind& camera_kind() {
     k.output_group = "images";
     k.finish = finish_camera;
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
-      return camera_ports(c, robot, "", 0, c.number("hackBaseline"));
+      std::vector<OutputPort> ports = camera_ports(c, robot, "", 0, c.number("hackBaseline"));
+      throttle_images(&ports);
+      return ports;
     };
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {
       return std::make_unique<CameraPlugin>(c, robot, seed, false);

@@ -87,6 +87,10 @@ std::vector<OutputPort> camera_ports(const PluginConfig& c, const std::string& r
 // it takes (kCamera*), camera_info alone the cheapest, depth.
 std::vector<OutputPort> depth_camera_ports(const PluginConfig& c, const std::string& robot);
 
+// gazebo_ros_camera's and gazebo_ros_multicamera's OnNewFrame: the image too goes out at most once per 1/updateRate
+// of sim time (the camera_info's rule, "Throttled publishers"), where the depth cameras send every frame.
+void throttle_images(std::vector<OutputPort>* ports);
+
 // A camera plug-in instance: renders colour, and depth with its cloud when depth is set.
 class CameraPlugin : public Plugin {
  public:

@@ -220,6 +220,7 @@ const PluginKind& multicamera_kind() {
         }
         ++frame;
       }
+      throttle_images(&ports);
       return ports;
     };
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {

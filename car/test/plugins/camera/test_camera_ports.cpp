@@ -138,3 +138,15 @@ TEST(CameraPorts, TriggeredCameraInfoGoesWithItsImage) {
   // updateRate 0: with every frame
   EXPECT_EQ(p[1].image.period, 0.0);
 }
+
+// gazebo_ros_camera's and gazebo_ros_multicamera's OnNewFrame send the image, too, at most once per 1/updateRate
+// (PeriodGate in the node); the depth cameras send every frame.
+TEST(CameraPorts, CameraImagesAreThrottledByUpdateRate) {
+  auto w = world_with_cube(ray_world(""), stereo());
+  const auto ports = ports_of(*w, "stereo_plugin");
+  ASSERT_EQ(ports.size(), 4u);
+  EXPECT_DOUBLE_EQ(ports[0].min_period, 0.25);
+  EXPECT_DOUBLE_EQ(ports[2].min_period, 0.25);
+  auto car = world_with_car(false);
+  EXPECT_EQ(ports_of(*car, "kinect_camera_controller")[0].min_period, 0.0);
+}
