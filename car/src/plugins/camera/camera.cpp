@@ -56,7 +56,7 @@ const std::vector<ParamDef>& camera_plugin_schema() {
   static const std::vector<ParamDef> s = {
       {"robotNamespace", T, "", ""},
       {"cameraName", T, "", ""},
-      {"frameName", Fr, "/world", ""},
+      {"frameName", Fr, "", ""},  // camera_utils only logs "defaults to /world": frame_name_ stays ""
       {"updateRate", N, "0", "Hz"},
       {"hackBaseline", N, "0", "m"},
       {"distortionK1", N, "0", ""},

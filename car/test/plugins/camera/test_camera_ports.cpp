@@ -150,3 +150,17 @@ TEST(CameraPorts, CameraImagesAreThrottledByUpdateRate) {
   auto car = world_with_car(false);
   EXPECT_EQ(ports_of(*car, "kinect_camera_controller")[0].min_period, 0.0);
 }
+
+// Without <frameName> camera_utils only logs "defaults to /world": its frame_name_ stays "", and so does the
+// header's frame_id.
+TEST(CameraPorts, WithoutFrameNameTheFrameIsEmpty) {
+  auto w = world_with_cube(
+      ray_world(""),
+      "<sensor type='camera' name='cam'><camera><horizontal_fov>1.0</horizontal_fov><image><width>8</width>"
+      "<height>6</height></image><clip><near>0.05</near><far>10</far></clip></camera><plugin name='cam_plugin' "
+      "filename='libgazebo_ros_camera.so'><cameraName>cam</cameraName></plugin></sensor>");
+  const auto ports = ports_of(*w, "cam_plugin");
+  ASSERT_EQ(ports.size(), 2u);
+  EXPECT_EQ(ports[0].frame, "");
+  EXPECT_EQ(ports[1].frame, "");
+}
