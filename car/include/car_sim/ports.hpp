@@ -44,6 +44,7 @@ struct JointTrajectory {
 // A pose target, world frame.
 struct PoseCommand {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  bool found = true;  // false: the pose could not be had this step (a TF lookup failed); `pose` means nothing
 };
 
 // A bare event (std_msgs/Empty): e.g. render one camera frame.

@@ -236,6 +236,9 @@ void InputPorts::poll() {
     } catch (const tf2::TransformException& e) {
       if (!p->tf_failing) ROS_ERROR("car: %s: %s", p->plugin.c_str(), e.what());
       p->tf_failing = true;
+      car_sim::PoseCommand none;
+      none.found = false;
+      p->command(none);
     }
   }
 }

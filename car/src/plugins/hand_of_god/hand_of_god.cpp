@@ -53,8 +53,11 @@ class HandOfGod : public Plugin, public PoseTarget {
     has_target_ = true;
   }
   void reset() override { has_target_ = false; }
+  // a failed lookup: upstream's UpdateChild returns before its force and its TF, for that update
   void command(const std::string&, const Command& value, CommandResult*) override {
-    set_target(std::get<PoseCommand>(value).pose);
+    const PoseCommand& c = std::get<PoseCommand>(value);
+    if (c.found) set_target(c.pose);
+    else has_target_ = false;
   }
 
   void pre_physics(const StepContext& ctx, RobotHandle& robot) override {
@@ -78,7 +81,9 @@ class HandOfGod : public Plugin, public PoseTarget {
     robot.apply_wrench(link_, t, Eigen::Vector3d::Zero(), true);
   }
 
+  // <frameId>_actual goes out only after a lookup that found the target, as upstream
   void post_physics(const StepContext&, const RobotHandle& robot, OutputQueue* out) override {
+    if (!has_target_) return;
     auto o = std::make_unique<PoseOut>();
     o->pose = robot.link_pose(link_);
     out->push_back(std::move(o));

@@ -51,7 +51,8 @@ class HectorImu : public Plugin {
     orientation_ = Eigen::Quaterniond::Identity();
     velocity_.setZero();
     accel_value_.setZero();
-    rate_value_.setZero();
+    // the rate stays: upstream's Reset zeroes orientation, velocity and accel only, so the first message after a
+    // reset (dt 0) carries the last rate through the rate model
     accel_.reset(rng_);
     rate_model_.reset(rng_);
     yaw_.reset(rng_);
@@ -109,7 +110,8 @@ class HectorImu : public Plugin {
   hector::SensorModel<1> yaw_;
   std::mt19937_64 rng0_, rng_;
   Eigen::Quaterniond orientation_;
-  Eigen::Vector3d velocity_, accel_value_, rate_value_;
+  Eigen::Vector3d velocity_, accel_value_;
+  Eigen::Vector3d rate_value_ = Eigen::Vector3d::Zero();  // [rad/s] kept over a reset, as upstream
   hector::LastUpdate last_;
 };
 

@@ -71,3 +71,34 @@ TEST(HandOfGod, ReachesTheTargetPose) {
   ASSERT_EQ(q.size(), 3000u);  // the actual pose every step
   EXPECT_TRUE(dynamic_cast<const PoseOut&>(*q.back()).pose.isApprox(p, 1e-12));
 }
+
+// Upstream's UpdateChild returns before its TF when the lookup of <frameId>_desired fails: no <frameId>_actual
+// until a target was found.
+TEST(HandOfGod, SendsNoActualPoseBeforeATarget) {
+  auto w = hog_world();
+  w->set_plugin_active("hog", "hog", true);
+  w->step(10);
+  EXPECT_TRUE(w->take_outputs().empty());
+}
+
+// A lookup that fails later (PoseCommand found = false): neither force nor actual pose for that update; the box,
+// pulled up toward a target 1 m above, then coasts at the speed it had (its gravity stays off).
+TEST(HandOfGod, AFailedLookupStopsThePull) {
+  auto w = hog_world();
+  w->set_plugin_active("hog", "hog", true);
+  Eigen::Isometry3d target = Eigen::Isometry3d::Identity();
+  target.translation() = Eigen::Vector3d(0, 0, 1);
+  PoseCommand found;
+  found.pose = target;
+  w->command("hog", "hog", w->plugins()[0].inputs[0].name, found);
+  w->step(100);
+  w->take_outputs();
+  PoseCommand lost;
+  lost.found = false;
+  w->command("hog", "hog", w->plugins()[0].inputs[0].name, lost);
+  const double v0 = w->model_state("hog").linear.z();
+  w->step(50);
+  EXPECT_TRUE(w->take_outputs().empty());
+  EXPECT_GT(v0, 0.1);
+  EXPECT_NEAR(w->model_state("hog").linear.z(), v0, 1e-6);
+}

@@ -97,3 +97,23 @@ TEST(HectorImu, BadOffsetIsALoadError) {
     EXPECT_NE(std::string(e.what()).find("plugin[imu]/rpyOffset"), std::string::npos) << e.what();
   }
 }
+
+// Upstream's Reset zeroes orientation, velocity and accel, not the rate: a cube spun at 1 rad/s about z in the air,
+// then reset_world, reads that rate in the first message after the reset (dt 0), not 0.
+TEST(HectorImu, ResetKeepsTheLastRate) {
+  World w(ray_world(""));
+  Eigen::Isometry3d p = Eigen::Isometry3d::Identity();
+  p.translation().z() = 10.0;
+  w.spawn(load_urdf_string(with_plugin(""), "cube"), "cube", p);
+  w.set_plugin_active("cube", "imu", true);
+  ModelState spin = w.model_state("cube");
+  spin.angular = Eigen::Vector3d(0, 0, 1);
+  w.set_model_state("cube", spin);
+  w.step(500);
+  ASSERT_NEAR(w.take_outputs<HectorImuOut>().back().angular_velocity.z(), 1.0, 1e-3);
+  w.reset_poses();
+  w.step(10);
+  const auto rs = w.take_outputs<HectorImuOut>();
+  ASSERT_FALSE(rs.empty());
+  EXPECT_NEAR(rs.front().angular_velocity.z(), 1.0, 1e-3);
+}
