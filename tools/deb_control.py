@@ -22,7 +22,7 @@ RUN = {
     'joint_state_publisher': 'joint-state-publisher', 'python3-yaml': 'python3-yaml',
     'python3-numpy': 'python3-numpy', 'python3-tqdm': 'python3-tqdm',
     # libraries: dpkg-shlibdeps names the run-time package of each
-    'liburdfdom-dev': '', 'libconsole-bridge-dev': '', 'tinyxml2': '', 'libsdformat-dev': '',
+    'liburdfdom-dev': '', 'liburdfdom-headers-dev': '', 'libconsole-bridge-dev': '', 'tinyxml2': '', 'libsdformat-dev': '',
     'libbullet-dev': '', 'libembree-dev': '', 'libassimp-dev': '', 'topic_tools': '',
     # this repository's own packages
     'car': 'ros-car', 'gazebo_msgs': 'ros-car-gazebo-msgs', 'controller_manager_msgs': 'ros-car-controller-manager-msgs',
