@@ -198,6 +198,10 @@ class RobotHandle {
   virtual void set_root_velocity(const Eigen::Vector3d& linear, const Eigen::Vector3d& angular) = 0;
   // Sets a joint's position [rad] or [m] and its velocity to 0.
   virtual void set_joint_position(int joint, double position) = 0;
+  // The world's physics switch (Gazebo's World::SetPhysicsEnabled): while off, each step advances sim time and
+  // integrates nothing; only what plug-ins set (joint positions) moves. Velocities are kept for when it is back on.
+  virtual bool physics_enabled() const = 0;
+  virtual void set_physics_enabled(bool on) = 0;
   // Measure the joint's reaction wrench from now on (in configure). Throws for a joint that is not moving.
   virtual void enable_joint_wrench(int joint) = 0;
   // The wrench the joint exerted on its child link during the last step: force [N] and torque [N m] about the child

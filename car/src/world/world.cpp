@@ -91,6 +91,9 @@ struct World::Impl : WorldAccess {
       body->set_root_velocity(linear, angular);
     }
     void set_joint_position(int j, double position) override { body->set_joint_position(j, position); }
+    bool* physics_on = nullptr;  // the world's switch
+    bool physics_enabled() const override { return *physics_on; }
+    void set_physics_enabled(bool on) override { *physics_on = on; }
     std::vector<int> wrench_claims;  // joints with a reaction sensor, re-made after a rebuild
     void enable_joint_wrench(int j) override {
       body->enable_joint_wrench(j);
@@ -221,6 +224,7 @@ struct World::Impl : WorldAccess {
   Environment env;
   std::unique_ptr<physics::Physics> phys;
   std::vector<std::unique_ptr<RobotRt>> robots;
+  bool physics_on = true;  // Gazebo's PhysicsEnabled: off, a step advances time only (RobotHandle::set_physics_enabled)
 };
 
 // ---- World ----------------------------------------------------------------------------------------------------
@@ -245,6 +249,7 @@ void World::spawn(const RobotModel& model, const std::string& name, const Eigen:
   if (has_model(name)) throw std::invalid_argument("model '" + name + "' exists already");
   if (!pose.matrix().allFinite()) throw std::invalid_argument("the pose to spawn '" + name + "' at is not finite");
   auto r = std::make_unique<Impl::RobotRt>();
+  r->physics_on = &impl_->physics_on;
   r->info.name = name;
   r->info.robot_namespace = robot_namespace;
   r->info.model = model;
@@ -304,7 +309,7 @@ void World::step(uint64_t n) {
       for (auto& i : r->plugins) i.plugin->pre_physics(ctx, *r);
     impl_->apply_jobs(tick_);
     try {
-      impl_->phys->step(dt);
+      if (impl_->physics_on) impl_->phys->step(dt);
     } catch (const physics::NonFiniteState& e) {
       ++tick_;
       throw SimulationError("t = " + std::to_string(time()) + " s: " + e.what() +

@@ -38,8 +38,8 @@ double arm_angle(const World& w) {
 
 TEST(JointPoseTrajectory, PlaysOnePointPerItsWait) {
   // (tolerance 1e-4 rad: the free joint drifts by some 1e-5 rad while the base settles on its contacts)
-  // three points 0.5, 1.0, 1.5 rad, each with time_from_start 0.1 s, starting now (t = 0): upstream sets point k at
-  // the step where t >= start + sum of the earlier points' time_from_start: ticks 0, 100, 200; then it ends
+  // three points 0.5, 1.0, 1.5 rad, each with time_from_start 0.1 s, starting now (t = 0): upstream sets point k in
+  // the step that ends at or after start + the earlier points' time_from_start: from ticks 0, 99, 199; then it ends
   auto w = arm_world();
   JointTrajectory t;
   t.joint_names = {"arm_joint"};
@@ -69,4 +69,52 @@ TEST(JointPoseTrajectory, UnknownJointsAreReportedAndWrongPointsSkipped) {
   EXPECT_NEAR(arm_angle(*w), 0.0, 1e-4);
   w->step(10);
   EXPECT_NEAR(arm_angle(*w), 0.9, 1e-4);
+}
+
+namespace {
+
+// A trajectory through the plug-in's port (the node's path), frame `frame`: points 0.5, 1.0 rad, 0.1 s each.
+CommandResult send(World& w, const std::string& frame) {
+  JointTrajectory t;
+  t.joint_names = {"arm_joint"};
+  t.frame_id = frame;
+  for (double q : {0.5, 1.0}) t.points.push_back({{q}, 0.1});
+  return w.command("arm", "traj", w.plugins()[0].inputs[0].name, t);
+}
+
+}  // namespace
+
+// UpdateStates runs at WorldUpdateBegin, where the sim time already counts the coming step: the second point (due
+// 0.1 s after the first) is set in the step that starts at tick 99, so the joint reads it after step 100.
+TEST(JointPoseTrajectory, APointLandsInTheStepThatEndsAtItsTime) {
+  auto w = arm_world();
+  ASSERT_TRUE(send(*w, "world").accepted);
+  w->step(99);
+  EXPECT_NEAR(arm_angle(*w), 0.5, 1e-9);
+  w->step(1);
+  EXPECT_NEAR(arm_angle(*w), 1.0, 1e-9);
+}
+
+// While a trajectory plays the world's physics stands still (the constructor's disable_physics_updates_): the
+// arm lifted 0.5 m does not fall until the trajectory has ended (0.2 s), then falls.
+TEST(JointPoseTrajectory, PhysicsStandsStillWhileATrajectoryPlays) {
+  auto w = arm_world();
+  ModelState s = w->model_state("arm");
+  s.pose.translation().z() = 0.5;
+  w->set_model_state("arm", s);
+  ASSERT_TRUE(send(*w, "world").accepted);
+  w->step(150);
+  EXPECT_EQ(w->model_state("arm").pose.translation().z(), 0.5);
+  w->step(150);
+  EXPECT_LT(w->model_state("arm").pose.translation().z(), 0.45);
+}
+
+// An empty frame_id (the message's default) names no link: upstream logs and ignores the trajectory.
+TEST(JointPoseTrajectory, AnEmptyFrameIdIsRefusedAsUpstream) {
+  auto w = arm_world();
+  const CommandResult r = send(*w, "");
+  ASSERT_EQ(r.notes.size(), 1u);
+  EXPECT_EQ(r.notes[0].text, "ros_joint_trajectory plugin needs a reference link [] as frame_id, aborting.");
+  w->step(50);
+  EXPECT_NEAR(arm_angle(*w), 0.0, 1e-4);
 }
