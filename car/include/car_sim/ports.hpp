@@ -166,9 +166,14 @@ struct ImageSample {
   const uint8_t* point_rgb = nullptr;  // r g b per pixel
 };
 
-// A depth [m] as a 16UC1 depth image carries it (openni_kinect's rule): millimetres, rounded, 0 where there is no
-// depth (NaN). Inline: the bridge calls it per pixel.
-inline uint16_t depth_mm(float d) { return std::isfinite(d) ? static_cast<uint16_t>(std::lround(d * 1000.0f)) : 0; }
+// A depth [m] as a 16UC1 depth image carries it (openni_kinect's `dest_uint16 = depth * 1000.0`): the float
+// depth times 1000.0 in double, truncated to whole millimetres; 0 where there is no depth (NaN). Beyond 65.535 m
+// (past every cutoff; undefined upstream) it is 65535. Inline: the bridge calls it per pixel.
+inline uint16_t depth_mm(float d) {
+  if (!std::isfinite(d) || d <= 0.0f) return 0;
+  const double mm = static_cast<double>(d) * 1000.0;
+  return mm >= 65535.0 ? 65535 : static_cast<uint16_t>(mm);
+}
 // Whether a pixel of the organized cloud has a point (x y z [m]; z is its depth, NaN where there is none).
 inline bool has_point(const float* xyz) { return std::isfinite(xyz[2]); }
 

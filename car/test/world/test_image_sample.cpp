@@ -8,12 +8,15 @@
 
 using namespace car_sim;
 
-TEST(ImageSampleDepth, MetresToRoundedMillimetres) {
+// openni_kinect's `dest_uint16 = depth * 1000.0`: the float times 1000.0 in double, truncated.
+TEST(ImageSampleDepth, MetresToTruncatedMillimetres) {
   EXPECT_EQ(depth_mm(1.5f), 1500);
   EXPECT_EQ(depth_mm(2.0004f), 2000);  // 2000.4 mm
-  EXPECT_EQ(depth_mm(2.0006f), 2001);  // 2000.6 mm
-  EXPECT_EQ(depth_mm(0.0006f), 1);
-  EXPECT_EQ(depth_mm(65.535f), 65535);  // the largest 16-bit value
+  EXPECT_EQ(depth_mm(2.0006f), 2000);  // 2000.6 mm
+  EXPECT_EQ(depth_mm(0.7f), 699);      // the float 0.699999988 m: 699.99998 mm
+  EXPECT_EQ(depth_mm(0.0006f), 0);
+  EXPECT_EQ(depth_mm(65.535f), 65535);  // the largest 16-bit value (65535.0037 mm)
+  EXPECT_EQ(depth_mm(100.0f), 65535);   // beyond it (past every cutoff)
 }
 
 TEST(ImageSampleDepth, NoDepthIsZero) {
