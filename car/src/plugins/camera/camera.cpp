@@ -600,7 +600,8 @@ const PluginKind& camera_kind() {
     k.filenames = {"libgazebo_ros_camera.so"};
     k.namespace_rule = NamespaceRule::EmptyIsModel;  // GetRobotNamespace (gazebo_ros_camera_utils.cpp)
     k.model_level = false;
-    k.sensor_types = {"camera"};
+    // CameraPlugin takes any CameraSensor: a depth sensor is one (its colour image)
+    k.sensor_types = {"camera", "depth"};
     k.sensor_schema = camera_sensor_schema();
     k.schema = camera_plugin_schema();
     k.schema.push_back({"imageTopicName", T, "image_raw", ""});

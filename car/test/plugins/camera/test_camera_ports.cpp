@@ -164,3 +164,24 @@ TEST(CameraPorts, WithoutFrameNameTheFrameIsEmpty) {
   EXPECT_EQ(ports[0].frame, "");
   EXPECT_EQ(ports[1].frame, "");
 }
+
+// upstream's CameraPlugin takes any CameraSensor, and a depth sensor is one: libgazebo_ros_camera.so on a depth
+// sensor publishes its colour image.
+TEST(CameraPorts, TheCameraPluginWorksOnADepthSensor) {
+  auto w = world_with_cube(
+      ray_world(""),
+      "<sensor type='depth' name='cam'><update_rate>10</update_rate><camera><horizontal_fov>1.0</horizontal_fov>"
+      "<image><width>8</width><height>6</height></image><clip><near>0.05</near><far>10</far></clip></camera>"
+      "<plugin name='cam_plugin' filename='libgazebo_ros_camera.so'><cameraName>cam</cameraName></plugin></sensor>");
+  const auto ports = ports_of(*w, "cam_plugin");
+  ASSERT_EQ(ports.size(), 2u);
+  EXPECT_EQ(ports[0].topic, "/cam/image_raw");
+  w->set_sensor_active("cube", "cam_plugin", true);
+  w->step(100);
+  const OutputQueue q = w->take_outputs();
+  ASSERT_FALSE(q.empty());
+  ImageSample s;
+  ASSERT_TRUE(q.back()->image_sample(0, &s));
+  EXPECT_EQ(s.width, 8u);
+  EXPECT_NE(s.image, nullptr);
+}
