@@ -14,9 +14,11 @@ constexpr ParamType F = ParamType::Flag;
 void finish(ResolveContext& ctx) {
   finish_camera(ctx);
   const PluginConfig& c = ctx.config();
+  // upstream keeps no depth then (every pixel NaN, or 0 in 16UC1): a warning, not a refusal
   if (c.number("pointCloudCutoff") >= c.number("pointCloudCutoffMax"))
-    ctx.fail("pointCloudCutoff", "pointCloudCutoff " + c.text("pointCloudCutoff") + " >= pointCloudCutoffMax " +
-                                     c.text("pointCloudCutoffMax"));
+    ctx.warn(Severity::Warning, "kinect-band", "pointCloudCutoff",
+             "pointCloudCutoff " + c.text("pointCloudCutoff") + " >= pointCloudCutoffMax " +
+                 c.text("pointCloudCutoffMax") + ": no pixel has a depth, as upstream");
 }
 
 }  // namespace

@@ -74,8 +74,11 @@ class Velodyne : public Plugin {
 void finish(ResolveContext& ctx) {
   finish_ray(ctx);
   const PluginConfig& c = ctx.config();
+  // upstream filters every point out then (empty clouds): a warning, not a refusal
   if (c.number("min_range") >= c.number("max_range"))
-    ctx.fail("min_range", "min_range " + c.text("min_range") + " >= max_range " + c.text("max_range"));
+    ctx.warn(Severity::Warning, "velodyne-band", "min_range",
+             "min_range " + c.text("min_range") + " >= max_range " + c.text("max_range") +
+                 ": every point is filtered out, as upstream (empty clouds)");
   if (c.number("ray/scan/vertical/samples") * c.number("ray/scan/vertical/resolution") > 65535)
     ctx.fail_sensor("ray/scan/vertical/samples", "more than 65535 rings");
 }

@@ -185,3 +185,24 @@ TEST(CameraPorts, TheCameraPluginWorksOnADepthSensor) {
   EXPECT_EQ(s.width, 8u);
   EXPECT_NE(s.image, nullptr);
 }
+
+// pointCloudCutoff >= pointCloudCutoffMax: upstream keeps no depth (every pixel NaN); car the same, with a warning.
+TEST(CameraPorts, AKinectWithAnEmptyDepthBandLoads) {
+  auto w = world_with_cube(
+      ray_world(""),
+      "<sensor type='depth' name='kin'><update_rate>10</update_rate><camera><horizontal_fov>1.0</horizontal_fov>"
+      "<image><width>8</width><height>6</height></image><clip><near>0.05</near><far>10</far></clip></camera>"
+      "<plugin name='kin_plugin' filename='libgazebo_ros_openni_kinect.so'><cameraName>kin</cameraName>"
+      "<pointCloudCutoff>5</pointCloudCutoff><pointCloudCutoffMax>2</pointCloudCutoffMax></plugin></sensor>");
+  bool warned = false;
+  for (const Diagnostic& d : w->robot("cube").config.diagnostics) warned = warned || d.code == "kinect-band";
+  EXPECT_TRUE(warned);
+  w->set_sensor_active("cube", "kin_plugin", true);
+  w->step(100);
+  const OutputQueue q = w->take_outputs();
+  ASSERT_FALSE(q.empty());
+  ImageSample s;
+  ASSERT_TRUE(q.back()->image_sample(0, &s));
+  ASSERT_NE(s.depth, nullptr);
+  for (int i = 0; i < s.width * s.height; ++i) EXPECT_TRUE(std::isnan(s.depth[i])) << i;
+}
