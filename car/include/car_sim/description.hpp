@@ -21,6 +21,7 @@ struct WorldCollision {
   std::string name;
   Shape shape;  // shape.origin: collision frame in the link frame
   SurfaceFriction friction;
+  std::optional<double> laser_retro;  // <laser_retro>: the intensity ray sensors read off it
 };
 
 struct WorldVisual {

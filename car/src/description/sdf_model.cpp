@@ -165,9 +165,8 @@ Link convert_link(const sdf::Link& l, const std::string& where, RobotModel* m) {
   if (!why.empty())
     m->diagnostics.push_back({Severity::Error, "inertial", where + "/inertial", why, line_of(l.Element())});
   out.inertial = ci;
-  // <gravity>: SDF's per-link switch (default true), the URDF path's <gazebo reference><gravity>
-  if (l.Element() && l.Element()->HasElement("gravity")) out.gazebo.gravity = l.Element()->Get<bool>("gravity");
   std::string surface_from;
+  std::optional<double> laser_retro;
   for (uint64_t i = 0; i < l.CollisionCount(); ++i) {
     const sdf::Collision* c = l.CollisionByIndex(i);
     const std::string here = where + "/collision[" + c->Name() + "]";
@@ -185,6 +184,10 @@ Link convert_link(const sdf::Link& l, const std::string& where, RobotModel* m) {
     c->SemanticPose().Resolve(cp);  // rule 4: relative to the link
     shape->origin = to_iso(cp);
     out.collisions.push_back(*shape);
+    // <laser_retro> (collision level, 0 when absent): what ray sensors read as intensity; car keeps one per link,
+    // the first collision's that sets one
+    if (!laser_retro && c->Element() && c->Element()->HasElement("laser_retro"))
+      laser_retro = c->Element()->Get<double>("laser_retro");
     const GazeboLinkExt ext = read_surface(*c);
     if (surface_empty(ext)) continue;
     if (surface_from.empty()) {
@@ -199,6 +202,10 @@ Link convert_link(const sdf::Link& l, const std::string& where, RobotModel* m) {
                                 line_of(c->Element())});
     }
   }
+  // after the surfaces (a collision's surface replaces out.gazebo): <gravity>, SDF's per-link switch (default
+  // true), the URDF path's <gazebo reference><gravity>; and the laser retro
+  if (l.Element() && l.Element()->HasElement("gravity")) out.gazebo.gravity = l.Element()->Get<bool>("gravity");
+  if (laser_retro) out.gazebo.laser_retro = laser_retro;
   for (uint64_t i = 0; i < l.VisualCount(); ++i) {
     const sdf::Visual* v = l.VisualByIndex(i);
     auto shape =

@@ -88,7 +88,9 @@ WorldLink read_link(const sdf::Link& l, const std::string& model, WorldDescripti
     ignition::math::Pose3d cp;
     c->SemanticPose().Resolve(cp);  // relative to the link
     shape->origin = to_iso(cp);
-    wl.collisions.push_back({c->Name(), *shape, read_friction(*c)});
+    std::optional<double> retro;
+    if (c->Element() && c->Element()->HasElement("laser_retro")) retro = c->Element()->Get<double>("laser_retro");
+    wl.collisions.push_back({c->Name(), *shape, read_friction(*c), retro});
   }
   for (uint64_t i = 0; i < l.VisualCount(); ++i) {
     const sdf::Visual* v = l.VisualByIndex(i);

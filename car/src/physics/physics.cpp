@@ -75,10 +75,16 @@ SurfaceLook urdf_look(const Link& l) {
   return look;
 }
 
-// How an SDF link looks: its first visual's colour.
+// How an SDF link looks: its first visual's colour, its first laser retro.
 SurfaceLook sdf_look(const WorldLink& l) {
   SurfaceLook look;
   look.rgba = l.visuals.empty() ? kDefaultColour : visual_colour(l.visuals.front());
+  // one retro per link (car's ray scene knows the body a ray hit): the first collision's that sets one
+  for (const auto& c : l.collisions)
+    if (c.laser_retro) {
+      look.laser_retro = *c.laser_retro;
+      break;
+    }
   return look;
 }
 

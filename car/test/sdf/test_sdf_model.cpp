@@ -330,3 +330,28 @@ TEST(SdfModel, MissingDatabaseModelNamesThePathsSearched) {
   }
   unsetenv("GAZEBO_MODEL_PATH");
 }
+
+// A link's <gravity>false</gravity> holds also when one of its collisions has a <surface> (the surface used to
+// replace the link's whole record, its gravity switch with it).
+TEST(SdfModel, GravityOffSurvivesACollisionSurface) {
+  const SdfRobot r = load_sdf_model_string(sdf(
+      "<model name='m'>" +
+      lnk("a", "<gravity>false</gravity><collision name='c'><geometry><box><size>1 1 1</size></box></geometry>"
+               "<surface><friction><ode><mu>0.5</mu></ode></friction></surface></collision>") +
+      "</model>"));
+  ASSERT_TRUE(r.model.links[0].gazebo.gravity.has_value());
+  EXPECT_FALSE(*r.model.links[0].gazebo.gravity);
+  EXPECT_EQ(r.model.links[0].gazebo.mu1, 0.5);
+}
+
+// <laser_retro> of a collision is what ray sensors read as intensity: the first collision's that sets one.
+TEST(SdfModel, LaserRetroIsTheFirstCollisionsThatSetsOne) {
+  const std::string box = "<geometry><box><size>1 1 1</size></box></geometry>";
+  const SdfRobot r = load_sdf_model_string(sdf(
+      "<model name='m'>" +
+      lnk("a", "<collision name='c0'>" + box + "</collision><collision name='c1'><laser_retro>150</laser_retro>" +
+                   box + "</collision><collision name='c2'><laser_retro>20</laser_retro>" + box + "</collision>") +
+      "</model>"));
+  ASSERT_TRUE(r.model.links[0].gazebo.laser_retro.has_value());
+  EXPECT_EQ(*r.model.links[0].gazebo.laser_retro, 150.0);
+}

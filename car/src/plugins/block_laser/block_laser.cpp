@@ -3,6 +3,7 @@
 // Behaviour per docs/COMPAT-sensors.md (fix: each point on its own ray, not half a step over).
 #include "block_laser.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -38,6 +39,9 @@ class BlockLaser : public Plugin {
     o->intensities.resize(n);
     std::normal_distribution<double> gauss(0.0, noise_ > 0 ? noise_ : 1.0);
     const double rmax = grid_.range_max();
+    // each ray's retro (0 without a hit, as Gazebo's GetRetro)
+    retro_.resize(n);
+    for (int k = 0; k < n; ++k) retro_[k] = std::isfinite(hits[k].distance) ? scene.look(hits[k].body).laser_retro : 0.0;
     for (int j = 0; j < grid_.nv(); ++j) {
       const double v = grid_.pitch(j);
       for (int i = 0; i < grid_.nh(); ++i) {
@@ -48,7 +52,11 @@ class BlockLaser : public Plugin {
         const double r = hit ? h.distance : rmax;
         const double y = grid_.yaw(i);
         double p[3] = {r * std::cos(v) * std::cos(y), r * std::cos(v) * std::sin(y), r * std::sin(v)};
-        double intensity = hit ? scene.look(h.body).laser_retro : 0.0;
+        // upstream averages the retro of the ray and its next neighbours (clamped at the last): (i, j), (i+1, j),
+        // (i, j+1), (i+1, j+1)
+        const int i1 = std::min(i + 1, grid_.nh() - 1), j1 = std::min(j + 1, grid_.nv() - 1);
+        double intensity = 0.25 * (retro_[i + j * grid_.nh()] + retro_[i1 + j * grid_.nh()] +
+                                   retro_[i + j1 * grid_.nh()] + retro_[i1 + j1 * grid_.nh()]);
         if (noise_ > 0) {
           if (std::abs(rmax - r) > 1e-6)
             for (double& x : p) x += gauss(rng_);
@@ -66,6 +74,7 @@ class BlockLaser : public Plugin {
   Eigen::Isometry3d sensor_pose_;
   double rate_;
   RayGrid grid_;
+  std::vector<double> retro_;  // per ray, this scan
   double noise_;  // [m] stddev
   std::mt19937_64 rng0_, rng_;
   BlockLaserOut proto_;

@@ -100,3 +100,18 @@ TEST(BlockLaser, MinAngleAboveMaxAngleIsALoadError) {
     EXPECT_NE(std::string(e.what()).find("sensor[block]/ray/scan/vertical/min_angle"), std::string::npos) << e.what();
   }
 }
+
+// Upstream averages the retro of a point's ray and its next neighbours (i+1, j+1; clamped at the last): with the
+// box's laser_retro 100 seen by rows 1 and 2 (ground and sky 0), every column reads row 0: 50, row 1: 100,
+// row 2: 50, the rest 0.
+TEST(BlockLaser, IntensityAveragesFourNeighbouringRays) {
+  const WorldDescription d = ray_world(
+      "<model name='box'><static>true</static><pose>1.6 0 0.15 0 0 0</pose><link name='l'><collision name='c'>"
+      "<laser_retro>100</laser_retro><geometry><box><size>0.2 1 0.3</size></box></geometry></collision></link>"
+      "</model>");
+  auto w = world_with_cube(d, block());
+  const BlockLaserOut c = one_cloud(*w);
+  const double want[9] = {50, 100, 50, 0, 0, 0, 0, 0, 0};
+  for (int j = 0; j < 9; ++j)
+    for (int i = 0; i < 3; ++i) EXPECT_FLOAT_EQ(c.intensities[i + 3 * j], static_cast<float>(want[j])) << i << " " << j;
+}
