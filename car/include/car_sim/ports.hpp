@@ -182,11 +182,10 @@ inline bool has_point(const float* xyz) { return std::isfinite(xyz[2]); }
 struct ImagePortSettings {
   size_t frame = 0;                     // which frame of the output (a multicamera's side)
   // CameraInfo: plumb_bob D (k1 k2 t1 t2 k3), P[3] = -f * baseline [m], one message per `period` [s] (0: with
-  // every frame); with_image: only while the frame's Image port has subscribers (the triggered camera)
+  // every frame)
   std::array<double, 5> distortion{};
   double baseline = 0.0;
   double period = 0.0;
-  bool with_image = false;
   bool millimetres = false;             // DepthImage: 16UC1 [mm] (0 where there is no depth), else 32FC1 [m]
 };
 

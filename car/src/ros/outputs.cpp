@@ -271,12 +271,6 @@ std::string OutputPorts::setup(const car_sim::PluginInfo& plugin, const car_sim:
       add(p.pub.getTopic() + (p.frame.empty() ? std::string() : " (frame " + p.frame + ")"));
     ports_.push_back(std::move(p));
   }
-  // ---- cameras: a camera_info sent only with its frame's image finds that image's port
-  for (Port& p : ports_)
-    if (p.port.type == T::CameraInfo && p.port.image.with_image)
-      for (size_t i = 0; i < ports_.size(); ++i)
-        if (ports_[i].port.type == T::Image && ports_[i].port.image.frame == p.port.image.frame)
-          p.image_of = static_cast<int>(i);
   set_debug_level(plugin.config);
   return offers;
 }

@@ -41,7 +41,6 @@ class OutputPorts {
     // a port with a min_period (range's throttle) or a CameraInfo port's period: when its next message is due
     car_sim::PeriodGate gate;
     // ---- cameras
-    int image_of = -1;    // CameraInfo with_image: the index of its frame's Image port
   };
   // A message with the port's header, on its publisher.
   template <class M>

@@ -64,7 +64,6 @@ void OutputPorts::publish_image(Port& p, const std::shared_ptr<const car_sim::Ou
       return;
     }
     case T::CameraInfo: {
-      if (p.image_of >= 0 && ports_[p.image_of].pub.getNumSubscribers() == 0) return;
       // at most one per period of sim time (PeriodGate: upstream's rule, time going back restarting the count)
       if (!p.gate.due(static_cast<int64_t>(stamp.toNSec()))) return;
       node.publish(p.pub, camera_info(s, p.port.image, p.frame, stamp));

@@ -49,11 +49,10 @@ const PluginKind& triggered_camera_kind() {
       p.topic = resolve_topic(camera_base(c, robot), c.text("triggerTopicName"));
       return std::vector<InputPort>{p};
     };
-    // upstream publishes image and camera_info only while the image topic has subscribers
+    // upstream publishes image and camera_info while either has subscribers (camera_info is advertised with the
+    // image's connect callbacks): each port to its own subscribers
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
-      std::vector<OutputPort> ports = camera_ports(c, robot, "", 0, c.number("hackBaseline"));
-      ports[1].image.with_image = true;
-      return ports;
+      return camera_ports(c, robot, "", 0, c.number("hackBaseline"));
     };
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {
       return std::make_unique<TriggeredCamera>(c, robot, seed);
