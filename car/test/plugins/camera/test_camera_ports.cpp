@@ -35,6 +35,13 @@ std::string stereo() {
          "</plugin></sensor>";
 }
 
+// An 8 x 6 sensor of `type` at 10 Hz with `plugin` (a <plugin> element).
+std::string small_sensor(const std::string& type, const std::string& plugin) {
+  return "<sensor type='" + type + "' name='cam'><update_rate>10</update_rate><camera><horizontal_fov>1.0" +
+         "</horizontal_fov><image><width>8</width><height>6</height></image><clip><near>0.05</near><far>10</far>" +
+         "</clip></camera>" + plugin + "</sensor>";
+}
+
 }  // namespace
 
 // The seed car's Kinect (car_camera_lidar kinect.xacro: cameraName camera, rgb/ and depth/ topics, frameName
@@ -152,11 +159,8 @@ TEST(CameraPorts, CameraImagesAreThrottledByUpdateRate) {
 // Without <frameName> camera_utils only logs "defaults to /world": its frame_name_ stays "", and so does the
 // header's frame_id.
 TEST(CameraPorts, WithoutFrameNameTheFrameIsEmpty) {
-  auto w = world_with_cube(
-      ray_world(""),
-      "<sensor type='camera' name='cam'><camera><horizontal_fov>1.0</horizontal_fov><image><width>8</width>"
-      "<height>6</height></image><clip><near>0.05</near><far>10</far></clip></camera><plugin name='cam_plugin' "
-      "filename='libgazebo_ros_camera.so'><cameraName>cam</cameraName></plugin></sensor>");
+  auto w = world_with_cube(ray_world(""), small_sensor("camera", "<plugin name='cam_plugin' filename='libgazebo_ros_"
+                                                                "camera.so'><cameraName>cam</cameraName></plugin>"));
   const auto ports = ports_of(*w, "cam_plugin");
   ASSERT_EQ(ports.size(), 2u);
   EXPECT_EQ(ports[0].frame, "");
@@ -166,11 +170,8 @@ TEST(CameraPorts, WithoutFrameNameTheFrameIsEmpty) {
 // upstream's CameraPlugin takes any CameraSensor, and a depth sensor is one: libgazebo_ros_camera.so on a depth
 // sensor publishes its colour image.
 TEST(CameraPorts, TheCameraPluginWorksOnADepthSensor) {
-  auto w = world_with_cube(
-      ray_world(""),
-      "<sensor type='depth' name='cam'><update_rate>10</update_rate><camera><horizontal_fov>1.0</horizontal_fov>"
-      "<image><width>8</width><height>6</height></image><clip><near>0.05</near><far>10</far></clip></camera>"
-      "<plugin name='cam_plugin' filename='libgazebo_ros_camera.so'><cameraName>cam</cameraName></plugin></sensor>");
+  auto w = world_with_cube(ray_world(""), small_sensor("depth", "<plugin name='cam_plugin' filename='libgazebo_ros_"
+                                                               "camera.so'><cameraName>cam</cameraName></plugin>"));
   const auto ports = ports_of(*w, "cam_plugin");
   ASSERT_EQ(ports.size(), 2u);
   EXPECT_EQ(ports[0].topic, "/cam/image_raw");
@@ -186,12 +187,10 @@ TEST(CameraPorts, TheCameraPluginWorksOnADepthSensor) {
 
 // pointCloudCutoff >= pointCloudCutoffMax: upstream keeps no depth (every pixel NaN); car the same, with a warning.
 TEST(CameraPorts, AKinectWithAnEmptyDepthBandLoads) {
-  auto w = world_with_cube(
-      ray_world(""),
-      "<sensor type='depth' name='kin'><update_rate>10</update_rate><camera><horizontal_fov>1.0</horizontal_fov>"
-      "<image><width>8</width><height>6</height></image><clip><near>0.05</near><far>10</far></clip></camera>"
-      "<plugin name='kin_plugin' filename='libgazebo_ros_openni_kinect.so'><cameraName>kin</cameraName>"
-      "<pointCloudCutoff>5</pointCloudCutoff><pointCloudCutoffMax>2</pointCloudCutoffMax></plugin></sensor>");
+  auto w = world_with_cube(ray_world(""),
+                           small_sensor("depth", "<plugin name='kin_plugin' filename='libgazebo_ros_openni_kinect.so'>"
+                                                 "<cameraName>kin</cameraName><pointCloudCutoff>5</pointCloudCutoff>"
+                                                 "<pointCloudCutoffMax>2</pointCloudCutoffMax></plugin>"));
   bool warned = false;
   for (const Diagnostic& d : w->robot("cube").config.diagnostics) warned = warned || d.code == "kinect-band";
   EXPECT_TRUE(warned);
