@@ -58,7 +58,14 @@ class PlanarMove : public Plugin, public TwistDrive {
       have_last_ = true;
     }
     const Eigen::Vector2d v = planar_world_velocity(vx_, vy_, yaw_of(s.pose));
-    robot.set_root_velocity(Eigen::Vector3d(v.x(), v.y(), 0.0), Eigen::Vector3d(0.0, 0.0, rot_));
+    // Model::SetLinearVel sets each link's centre-of-mass velocity (ODELink: dBodySetLinearVel): the root turns
+    // about its centre of mass, so its origin moves at v - w x (com - origin) [m/s], world frame
+    const Eigen::Vector3d w(0.0, 0.0, rot_);
+    const Link* root = robot.model().find_link(robot.model().root_link);
+    const Eigen::Vector3d com_offset =
+        s.pose.linear() * (root && root->inertial ? Eigen::Vector3d(root->inertial->origin.translation())
+                                                  : Eigen::Vector3d::Zero());
+    robot.set_root_velocity(Eigen::Vector3d(v.x(), v.y(), 0.0) - w.cross(com_offset), w);
   }
 
   // Upstream's UpdateChild at the sim time after this step: odometry when (t - last).Double() > 1 / odometryRate

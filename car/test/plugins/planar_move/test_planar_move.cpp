@@ -124,3 +124,26 @@ TEST(PlanarMove, OdometryMessageIsPlanar) {
   EXPECT_TRUE(p.outputs[0].planar_position);
   EXPECT_EQ(p.outputs[0].tf, TfOrder::Before);
 }
+
+// Model::SetLinearVel sets each link's centre-of-mass velocity: a base whose centre of mass is 0.2 m ahead of its
+// origin, turning on the spot at 1 rad/s, turns about its centre of mass (which stays put) while its origin
+// circles it: after pi/2 s the origin is at com + 0.2 (cos(pi + pi/2), sin(pi + pi/2)) = (0.2, -0.2).
+TEST(PlanarMove, TurnsAboutTheCentreOfMass) {
+  const std::string xml = R"(<robot name="box">
+  <link name="base_footprint">
+    <inertial><mass value="10"/><origin xyz="0.2 0 0.1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><origin xyz="0.2 0 0.1"/><geometry><box size="0.4 0.4 0.2"/></geometry></collision>
+  </link>
+  <gazebo reference="base_footprint"><mu1>0</mu1><mu2>0</mu2></gazebo>
+  <gazebo><plugin name="move" filename="libgazebo_ros_planar_move.so"><cmdTimeout>-1</cmdTimeout></plugin></gazebo>
+</robot>)";
+  World w(empty_world());
+  w.spawn(load_urdf_string(xml, "box.urdf"), "box", at(0, 0, 0));
+  Twist t;
+  t.angular.z() = 1.0;
+  w.command("box", "move", w.plugins()[0].inputs[0].name, t);
+  w.step(static_cast<uint64_t>(std::lround(M_PI / 2 * 1000)));
+  const Eigen::Isometry3d p = w.model_state("box").pose;
+  EXPECT_NEAR(p.translation().x(), 0.2, 2e-3);
+  EXPECT_NEAR(p.translation().y(), -0.2, 2e-3);
+}
