@@ -324,6 +324,12 @@ class ResolveContext {
 // car warns and does the same (a refusal would be stricter than Gazebo).
 void warn_negative_rate(ResolveContext& ctx, const std::string& key);
 
+// xyzOffset and rpyOffset (p3d, the two IMUs): each three numbers, else a load error naming the key.
+void check_offsets(ResolveContext& ctx);
+// rpyOffset "r p y" [rad] as a rotation, ignition's Quaterniond(Vector3d): roll about x, then pitch about y, then
+// yaw about z. For a configuration check_offsets passed.
+Eigen::Matrix3d rpy_offset(const PluginConfig& c);
+
 // A plug-in kind, registered once in src/plugins/registry.cpp.
 struct PluginKind {
   std::string name;                         // registry name, e.g. "diff_drive"

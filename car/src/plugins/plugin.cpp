@@ -201,6 +201,17 @@ void warn_negative_rate(ResolveContext& ctx, const std::string& key) {
              "<" + key + "> " + ctx.config().text(key) + " is not > 0: the plug-in updates every step, as upstream");
 }
 
+void check_offsets(ResolveContext& ctx) {
+  const PluginConfig& c = ctx.config();
+  for (const char* key : {"xyzOffset", "rpyOffset"})
+    if (!detail::parse_numbers(c.text(key), 3)) ctx.fail(key, "'" + c.text(key) + "' is not 3 numbers");
+}
+
+Eigen::Matrix3d rpy_offset(const PluginConfig& c) {
+  const auto rpy = detail::parse_numbers(c.text("rpyOffset"), 3);
+  return detail::rpy_to_matrix((*rpy)[0], (*rpy)[1], (*rpy)[2]);
+}
+
 void ResolveContext::set(const std::string& key, const std::string& value) {
   for (auto& p : config_->params)
     if (p.key == key) {

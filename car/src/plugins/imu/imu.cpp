@@ -6,7 +6,6 @@
 
 #include <cmath>
 
-#include "xml_util.hpp"
 
 namespace car_sim {
 
@@ -22,8 +21,7 @@ class Imu : public Plugin {
       : link_(c.link), rate_(c.number("updateRate")), stddev_(std::abs(c.number("gaussianNoise"))),
         rng0_(plugin_rng(seed, robot, c.name)), rng_(rng0_) {
     proto_.sensor = c.name;
-    const auto rpy = detail::parse_numbers(c.text("rpyOffset"), 3);
-    offset_ = Eigen::Quaterniond(detail::rpy_to_matrix((*rpy)[0], (*rpy)[1], (*rpy)[2]));
+    offset_ = Eigen::Quaterniond(rpy_offset(c));
   }
 
   double update_rate() const override { return rate_; }
@@ -88,8 +86,7 @@ void finish(ResolveContext& ctx) {
   const std::string body = c.text("bodyName");
   if (!ctx.model().find_link(body))
     ctx.drop("bodyName", "gazebo_ros_imu plugin error: bodyName: " + body + " does not exist");
-  for (const char* key : {"xyzOffset", "rpyOffset"})
-    if (!detail::parse_numbers(c.text(key), 3)) ctx.fail(key, "'" + c.text(key) + "' is not 3 numbers");
+  check_offsets(ctx);
   warn_negative_rate(ctx, "updateRate");
   c.link = body;
   if (c.param("frameName").from_default) ctx.set("frameName", body);

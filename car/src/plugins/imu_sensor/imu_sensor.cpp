@@ -8,7 +8,6 @@
 #include <cmath>
 
 #include "imu/imu.hpp"
-#include "xml_util.hpp"
 
 namespace car_sim {
 
@@ -76,18 +75,12 @@ const std::vector<ParamDef>& imu_sensor_schema() {
   return s;
 }
 
-// rpyOffset "r p y" [rad] as a rotation: ignition's Quaterniond(Vector3d), roll about x, pitch about y, yaw about z
-Eigen::Quaterniond rpy_offset(const PluginConfig& c) {
-  const auto rpy = detail::parse_numbers(c.text("rpyOffset"), 3);
-  return Eigen::Quaterniond(detail::rpy_to_matrix((*rpy)[0], (*rpy)[1], (*rpy)[2]));
-}
-
 class ImuSensor : public Plugin {
  public:
   ImuSensor(const PluginConfig& c, const std::string& robot, uint64_t seed)
       : link_(c.link), sensor_pose_(c.sensor_pose), rate_(c.number("update_rate")),
         publish_rate_(c.number("updateRateHZ")), stddev_(std::abs(c.number("gaussianNoise"))),
-        offset_(rpy_offset(c)), initial_reference_(c.flag("initialOrientationAsReference")),
+        offset_(Eigen::Quaterniond(rpy_offset(c))), initial_reference_(c.flag("initialOrientationAsReference")),
         rng0_(plugin_rng(seed, robot, c.sensor)), rng_(rng0_) {
     proto_.sensor = c.sensor;
     // the sensor's <noise>: per axis; each bias drawn once, N(bias_mean, bias_stddev) with a random sign, from
@@ -209,8 +202,7 @@ void finish(ResolveContext& ctx) {
       ctx.fail_sensor(d.key, "stddev must be >= 0");
   const std::string& t = c.text("imu/noise/type");
   if (t != "none" && t != "gaussian") ctx.fail_sensor("imu/noise/type", "unknown noise type '" + t + "'");
-  for (const char* key : {"xyzOffset", "rpyOffset"})
-    if (!detail::parse_numbers(c.text(key), 3)) ctx.fail(key, "'" + c.text(key) + "' is not 3 numbers");
+  check_offsets(ctx);
   warn_negative_rate(ctx, "updateRateHZ");
   if (c.param("frameName").from_default) ctx.drop("frameName", "missing <frameName>, cannot proceed");
   // upstream's ROS_WARN, kept: the default surprises (a 100 Hz sensor publishes once a second)

@@ -24,9 +24,8 @@ class P3d : public Plugin {
       : body_(c.text("bodyName")), frame_(c.text("frameName")), rate_(c.number("updateRate")),
         noise_(c.number("gaussianNoise")), rng0_(plugin_rng(seed, robot, c.name)), rng_(rng0_) {
     const auto xyz = detail::parse_numbers(c.text("xyzOffset"), 3);
-    const auto rpy = detail::parse_numbers(c.text("rpyOffset"), 3);
     offset_xyz_ = Eigen::Vector3d((*xyz)[0], (*xyz)[1], (*xyz)[2]);
-    offset_rot_ = detail::rpy_to_matrix((*rpy)[0], (*rpy)[1], (*rpy)[2]);
+    offset_rot_ = rpy_offset(c);
   }
 
   double update_rate() const override { return rate_; }
@@ -77,8 +76,7 @@ void finish(ResolveContext& ctx) {
   const std::string& f = c.text("frameName");
   if (!world_frame(f) && !ctx.model().find_link(f))
     ctx.drop("frameName", "gazebo_ros_p3d plugin: frameName: " + f + " does not exist, will not publish pose");
-  for (const char* key : {"xyzOffset", "rpyOffset"})
-    if (!detail::parse_numbers(c.text(key), 3)) ctx.fail(key, "'" + c.text(key) + "' is not 3 numbers");
+  check_offsets(ctx);
   if (c.number("gaussianNoise") < 0) ctx.fail("gaussianNoise", "must be >= 0");
   warn_negative_rate(ctx, "updateRate");
   ctx.config().link = c.text("bodyName");
