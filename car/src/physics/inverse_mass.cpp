@@ -73,6 +73,16 @@ bool InverseMass::build(const btMultiBody& mb) {
   w_.resize(n_);
   u_.resize(n_);
   cols_.resize(n_);
+  iw_.resize(bodies);
+  top_.resize(n_ - 6);
+  bottom_.resize(n_ - 6);
+  for (int i = 0; i < links; ++i) {
+    const btMultibodyLink& l = mb.getLink(i);
+    for (int d = 0; d < l.m_dofCount; ++d) {
+      top_[l.m_dofOffset + d] = rot_[i + 1] * l.m_axes[d].m_topVec;
+      bottom_[l.m_dofOffset + d] = rot_[i + 1] * l.m_axes[d].m_bottomVec;
+    }
+  }
   double* M = l_.data();
   // lower triangle: row >= column, indices of the full 6 + dofs layout
   auto add = [&](int row, int col, double x) {
@@ -85,7 +95,8 @@ bool InverseMass::build(const btMultiBody& mb) {
     const btVector3& inertia = b == 0 ? mb.getBaseInertia() : mb.getLink(b - 1).m_inertiaLocal;
     // inertia about the centre of mass, world frame
     const btMatrix3x3& R = rot_[b];
-    const btMatrix3x3 iw = R.scaled(inertia) * R.transpose();
+    iw_[b] = R.scaled(inertia) * R.transpose();
+    const btMatrix3x3& iw = iw_[b];
     // the joints from the body up to the base: a unit rate of dof d of link j turns the body with a_d about link
     // j's centre of mass and moves that point with b_d (Bullet's spatial axis, frame j)
     int k = 0;
@@ -93,8 +104,8 @@ bool InverseMass::build(const btMultiBody& mb) {
       const btMultibodyLink& l = mb.getLink(j);
       const btVector3 r = com_[b] - com_[j + 1];
       for (int d = 0; d < l.m_dofCount; ++d) {
-        const btVector3 a = rot_[j + 1] * l.m_axes[d].m_topVec;
-        const btVector3 v = rot_[j + 1] * l.m_axes[d].m_bottomVec;
+        const btVector3& a = top_[l.m_dofOffset + d];
+        const btVector3& v = bottom_[l.m_dofOffset + d];
         cols_[k] = 6 + l.m_dofOffset + d;
         w_[k] = a;
         u_[k] = v + a.cross(r);
@@ -186,6 +197,92 @@ void InverseMass::solve(const btScalar* f, btScalar* x) const {
     case 12: return triangular_solves<12>(l, inv, f + off_, y, m);
     default: return triangular_solves<0>(l, inv, f + off_, y, m);
   }
+}
+
+bool InverseMass::free_motion_supported(const btMultiBody& mb) {
+  for (int i = 0; i < mb.getNumLinks(); ++i) {
+    const btMultibodyLink& l = mb.getLink(i);
+    if (l.m_jointFeedback) return false;
+    if (l.m_jointType != btMultibodyLink::eRevolute && l.m_jointType != btMultibodyLink::ePrismatic &&
+        l.m_jointType != btMultibodyLink::eFixed)
+      return false;
+  }
+  return true;
+}
+
+void InverseMass::free_acceleration(const btMultiBody& mb, btScalar* qdd) {
+  const int links = mb.getNumLinks();
+  const int bodies = links + 1;
+  const bool fixed = off_ == 6;
+  omega_.resize(bodies);
+  vel_.resize(bodies);
+  alpha_.resize(bodies);
+  acc_.resize(bodies);
+  force_.assign(n_, 0.0);
+  // Velocities and their rates with every joint acceleration zero, base first (world frame; a body's point is its
+  // centre of mass). Over a joint, seen from the parent: the child turns at w_rel and its centre moves at v_rel
+  // (Bullet's spatial axes times the rates); from the world, the parent's rotation adds w_p x d to the centre's
+  // velocity and the usual transport terms to its acceleration, 2 w_p x v_rel (Coriolis) and w_rel x v_rel (the
+  // turn about the joint's axis, zero for a slider).
+  omega_[0] = mb.getBaseOmega();
+  vel_[0] = mb.getBaseVel();
+  alpha_[0].setZero();
+  acc_[0].setZero();
+  for (int i = 0; i < links; ++i) {
+    const btMultibodyLink& l = mb.getLink(i);
+    const int p = l.m_parent + 1, c = i + 1;
+    const btScalar* qd = mb.getJointVelMultiDof(i);
+    btVector3 w_rel(0, 0, 0), v_rel(0, 0, 0);
+    for (int d = 0; d < l.m_dofCount; ++d) {
+      w_rel += top_[l.m_dofOffset + d] * qd[d];
+      v_rel += bottom_[l.m_dofOffset + d] * qd[d];
+      // the joint's effort [N m or N]
+      force_[6 + l.m_dofOffset + d] = l.m_jointTorque[d];
+    }
+    const btVector3 d = com_[c] - com_[p];
+    const btVector3& wp = omega_[p];
+    const btVector3 wxd = wp.cross(d);
+    omega_[c] = wp + w_rel;
+    vel_[c] = vel_[p] + wxd + v_rel;
+    alpha_[c] = alpha_[p] + wp.cross(w_rel);
+    acc_[c] = acc_[p] + alpha_[p].cross(d) + wp.cross(wxd) + btScalar(2) * wp.cross(v_rel) + w_rel.cross(v_rel);
+  }
+  // Each body's wrench about its centre of mass, world frame, to hold that motion against what acts on it: m a and
+  // I alpha + w x I w (Bullet's gyroscopic term), Bullet's damping (k1 + k2 |v|) m v and (k1 + k2 |w|) I w, less
+  // the applied force and torque (gravity among them, applyGravity). Its share of each generalised force: the
+  // columns build() sums M from.
+  const btScalar k_lin = mb.getLinearDamping(), k_ang = mb.getAngularDamping();
+  const bool gyro = mb.getUseGyroTerm();
+  for (int b = 0; b < bodies; ++b) {
+    if (b == 0 && fixed) continue;
+    const btScalar mass = b == 0 ? mb.getBaseMass() : mb.getLink(b - 1).m_mass;
+    const btMatrix3x3& iw = iw_[b];
+    const btVector3& w = omega_[b];
+    const btVector3 iww = iw * w;
+    btVector3 f = mass * acc_[b] - (b == 0 ? mb.getBaseForce() : mb.getLinkForce(b - 1));
+    btVector3 n = iw * alpha_[b] - (b == 0 ? mb.getBaseTorque() : mb.getLinkTorque(b - 1));
+    if (gyro) n += w.cross(iww);
+    if (k_lin != 0) f += mass * vel_[b] * (k_lin + k_lin * vel_[b].safeNorm());
+    if (k_ang != 0) n += iww * (k_ang + k_ang * w.safeNorm());
+    for (int j = b - 1; j >= 0; j = mb.getLink(j).m_parent) {
+      const btMultibodyLink& l = mb.getLink(j);
+      const btVector3 r = com_[b] - com_[j + 1];
+      for (int d = 0; d < l.m_dofCount; ++d) {
+        const btVector3& a = top_[l.m_dofOffset + d];
+        const btVector3 u = bottom_[l.m_dofOffset + d] + a.cross(r);
+        force_[6 + l.m_dofOffset + d] -= u.dot(f) + a.dot(n);
+      }
+    }
+    if (!fixed) {
+      // the base's rotation about its centre of mass and its translation
+      const btVector3 t = n + (com_[b] - com_[0]).cross(f);
+      for (int a = 0; a < 3; ++a) {
+        force_[a] -= t[a];
+        force_[3 + a] -= f[a];
+      }
+    }
+  }
+  solve(force_.data(), qdd);
 }
 
 }  // namespace physics

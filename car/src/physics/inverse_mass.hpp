@@ -26,6 +26,19 @@ class InverseMass {
 
   const btMultiBody* body() const { return mb_; }
 
+  // Whether free_acceleration gives mb's free accelerations: every joint revolute, prismatic or fixed (one or no
+  // degree of freedom) and no joint reporting its forces (Bullet's pass computes those along the way).
+  static bool free_motion_supported(const btMultiBody& mb);
+
+  // qdd = M^-1 (tau - c(q, qd)) for the M of the last successful build: the accelerations Bullet's free-motion
+  // pass (computeAccelerationsArticulatedBodyAlgorithmMultiDof, no constraint forces) computes, in its layout (base
+  // angular and linear acceleration of the base's centre of mass, world frame, then the joint accelerations), from
+  // the applied forces and torques, the joint efforts, gravity's share of those, Bullet's damping and gyroscopic
+  // terms, and the velocity-product accelerations of the tree. The same dynamics by another route: the rows' M,
+  // already factored, and one pass over the bodies instead of Featherstone's three (docs/COMPAT-physics.md "Free
+  // motion").
+  void free_acceleration(const btMultiBody& mb, btScalar* qdd);
+
  private:
   const btMultiBody* mb_ = nullptr;
   int n_ = 0;    // 6 + dofs
@@ -38,6 +51,23 @@ class InverseMass {
   // per generalised velocity column and body: angular [rad/s] and linear [m/s] world velocity of that body
   std::vector<btVector3> w_, u_;
   std::vector<int> cols_;  // a body's non-zero columns
+  // per body: inertia about the centre of mass, world frame [kg m^2]; per dof: its spatial axis (angular, linear
+  // part) in the world frame
+  std::vector<btMatrix3x3> iw_;
+  std::vector<btVector3> top_, bottom_;
+  // free_acceleration's per body: angular velocity [rad/s] and centre-of-mass velocity [m/s], their rates with no
+  // joint acceleration [rad/s^2], [m/s^2], world frame; and the generalised force [N m | N]
+  std::vector<btVector3> omega_, vel_, alpha_, acc_;
+  std::vector<double> force_;
+};
+
+// Where a solver finds the mass matrices this step's free-motion pass built and factored already (IslandWorld), so
+// that the rows reuse them instead of building them again from the same frames.
+class InverseMassSource {
+ public:
+  virtual ~InverseMassSource() = default;
+  // mb's matrix of this step, or nullptr (the solver builds its own)
+  virtual const InverseMass* built(const btMultiBody* mb) const = 0;
 };
 
 }  // namespace physics

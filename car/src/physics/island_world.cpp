@@ -218,6 +218,7 @@ IslandWorld::IslandWorld(btDispatcher* dispatcher, btBroadphaseInterface* broadp
     own_.push_back(std::make_unique<SurfaceSolver>());
     solvers_.push_back(own_.back().get());
   }
+  for (SurfaceSolver* s : solvers_) s->set_inverse_source(this);
   scratch_.resize(solvers_.size());
 }
 
@@ -258,11 +259,55 @@ void IslandWorld::for_each_multibody(F&& f) {
 // cleared and, if it was awake before the islands were built, its free accelerations (Featherstone's
 // articulated-body algorithm; gravity was added in applyGravity and the forces are cleared in clearForces, as
 // Bullet 3.24 builds with BT_USE_VIRTUAL_CLEARFORCES_AND_GRAVITY).
+// Which multibodies take their free motion from their factored mass matrix this step (docs/COMPAT-physics.md "Free
+// motion"): all, when the solvers set up every row with factored matrices, except a multibody that a constraint of
+// Bullet's rows touches (a joint limit: its rows read the caches of Bullet's free-motion pass), one with joint
+// feedback or a joint of several degrees of freedom (Bullet's pass for those).
+void IslandWorld::mark_factored(const btContactSolverInfo& info) {
+  const int nmb = m_multiBodies.size();
+  free_.resize(nmb);
+  factored_.assign(nmb, solvers_[0]->factored_free_motion(info) ? 1 : 0);
+  if (!nmb || !factored_[0]) return;
+  for (int i = 0; i < nmb; ++i)
+    if (m_multiBodies[i]->getUserIndex() != i) m_multiBodies[i]->setUserIndex(i);
+  for (int i = 0; i < m_multiBodyConstraints.size(); ++i) {
+    btMultiBodyConstraint* c = m_multiBodyConstraints[i];
+    btMultiBody *a = c->getMultiBodyA(), *b = c->getMultiBodyB();
+    // car's motor on its own multibody sets its rows up with SurfaceSolver::response
+    if (a == b && c->getConstraintType() == MULTIBODY_CONSTRAINT_1DOF_JOINT_MOTOR &&
+        dynamic_cast<JointMotor*>(c))
+      continue;
+    if (a) factored_[a->getUserIndex()] = 0;
+    if (b) factored_[b->getUserIndex()] = 0;
+  }
+  for (int i = 0; i < nmb; ++i)
+    if (factored_[i] && !InverseMass::free_motion_supported(*m_multiBodies[i])) factored_[i] = 0;
+}
+
+const InverseMass* IslandWorld::built(const btMultiBody* mb) const {
+  const int i = mb->getUserIndex();
+  if (i < 0 || i >= static_cast<int>(free_.size()) || m_multiBodies[i] != mb) return nullptr;
+  const FreeMotion& f = free_[i];
+  return f.stamp == stamp_ && f.ok ? &f.inverse : nullptr;
+}
+
 void IslandWorld::free_motion(int body, Scratch& s, const btContactSolverInfo& info) {
   btMultiBody* b = m_multiBodies[body];
   b->forwardKinematics(s.world_to_local, s.local_origin);
   b->clearConstraintForces();
   if (!awake_[body]) return;
+  if (factored_[body]) {
+    // M q'' = tau - c from the matrix the rows use (built once for both), then Bullet's velocity update
+    FreeMotion& f = free_[body];
+    f.stamp = stamp_;
+    f.ok = f.inverse.build(*b);
+    if (f.ok) {
+      s.r.resize(6 + b->getNumDofs());
+      f.inverse.free_acceleration(*b, &s.r[0]);
+      b->applyDeltaVeeMultiDof(&s.r[0], info.m_timeStep);
+      return;
+    }
+  }
   s.r.resize(b->getNumLinks() + 1);
   s.v.resize(b->getNumLinks() + 1);
   s.m.resize(b->getNumLinks() + 1);
@@ -343,6 +388,8 @@ void IslandWorld::integrateTransforms(btScalar dt) {
 // static multibody collider (a fixed base), which any island may touch, makes the step run in Bullet's order.
 void IslandWorld::solveConstraints(btContactSolverInfo& info) {
   const int nmb = m_multiBodies.size();
+  // no matrix of an earlier step is found (built)
+  ++stamp_;
   bool rk4 = false;
   for (int i = 0; i < nmb; ++i) rk4 = rk4 || m_multiBodies[i]->isUsingRK4Integration();
   if (rk4) {
@@ -363,6 +410,7 @@ void IslandWorld::solveConstraints(btContactSolverInfo& info) {
   m_constraintSolver->prepareSolve(getNumCollisionObjects(), getDispatcher()->getNumManifolds());
   awake_.assign(nmb, 0);
   for (int i = 0; i < nmb; ++i) awake_[i] = !sleeping(m_multiBodies[i]);
+  mark_factored(info);
   collect_islands();
   const bool in_order = assign_multibodies();
   const int n = static_cast<int>(islands_.size());

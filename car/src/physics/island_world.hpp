@@ -45,7 +45,7 @@ class IslandDispatcher : public btCollisionDispatcher {
   std::vector<btBroadphasePair*> settled_;
 };
 
-class IslandWorld : public btMultiBodyDynamicsWorld {
+class IslandWorld : public btMultiBodyDynamicsWorld, public InverseMassSource {
  public:
   // `solver` solves on the calling thread; each other OpenMP thread gets a SurfaceSolver of its own.
   IslandWorld(btDispatcher* dispatcher, btBroadphaseInterface* broadphase, SurfaceSolver* solver,
@@ -68,6 +68,9 @@ class IslandWorld : public btMultiBodyDynamicsWorld {
   // (shape, transforms, thresholds: a static shape, a sleeping object) gets last step's box again. The box still
   // goes to the broad phase every step, as in Bullet, so the broad phase's order is Bullet's.
   void updateAabbs() override;
+
+  // The mass matrix mb's free motion built and factored this step (free_motion), for the rows.
+  const InverseMass* built(const btMultiBody* mb) const override;
 
  protected:
   void solveConstraints(btContactSolverInfo& info) override;
@@ -140,6 +143,17 @@ class IslandWorld : public btMultiBodyDynamicsWorld {
   std::vector<int> owner_;          // per multibody: its island's index (islands_.size(): none)
   std::vector<int> island_mbs_;     // multibody indices grouped by island
   std::vector<int> island_count_;
+  // Per multibody (its user index is its index in m_multiBodies): whether its free motion comes from its factored
+  // mass matrix this step (no constraint of Bullet's reads the caches of Bullet's pass), and that matrix.
+  struct FreeMotion {
+    InverseMass inverse;
+    uint64_t stamp = 0;  // the step it was built at (stamp_), if ok
+    bool ok = false;
+  };
+  std::vector<char> factored_;
+  std::vector<FreeMotion> free_;
+  uint64_t stamp_ = 0;  // solveConstraints calls so far
+  void mark_factored(const btContactSolverInfo& info);
   bool reuse_ = true;
   bool integrated_ = false;  // this step's islands' tasks integrated the multibodies
 };

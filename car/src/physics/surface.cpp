@@ -801,6 +801,8 @@ bool SurfaceSolver::own_rows(const btContactSolverInfo& info) const {
 
 const InverseMass* SurfaceSolver::inverse_mass(const btMultiBody* mb) {
   if (rows_ != RowSetup::factored) return nullptr;
+  if (source_)
+    if (const InverseMass* built = source_->built(mb)) return built;
   for (int i = 0; i < inverse_used_; ++i)
     if (inverse_[i].body() == mb) return inverse_ok_[i] ? &inverse_[i] : nullptr;
   if (inverse_used_ == static_cast<int>(inverse_.size())) {

@@ -88,6 +88,13 @@ class SurfaceSolver : public btMultiBodyConstraintSolver {
   void convertContacts(btPersistentManifold** manifolds, int count, const btContactSolverInfo& info) override;
 
   void set_row_setup(RowSetup rows) { rows_ = rows; }
+  // The mass matrices built before this solver's solves (nullptr: none), for inverse_mass.
+  void set_inverse_source(const InverseMassSource* source) { source_ = source; }
+  // Whether a multibody's free motion may come from its factored mass matrix (InverseMass::free_acceleration): the
+  // rows are set up with factored matrices, so no row needs the caches of Bullet's free-motion pass.
+  bool factored_free_motion(const btContactSolverInfo& info) const {
+    return rows_ == RowSetup::factored && own_rows(info);
+  }
 
   // The solver converting rows on this thread now (its joint constraints' rows are being made), or nullptr.
   static SurfaceSolver* converting();
@@ -177,6 +184,7 @@ class SurfaceSolver : public btMultiBodyConstraintSolver {
   void bind(btMultiBodySolverConstraint& c, btPersistentManifold* m, btManifoldPoint& cp, const btContactSolverInfo& info);
 
   RowSetup rows_ = RowSetup::factored;
+  const InverseMassSource* source_ = nullptr;
   bool own_iterations_ = false;  // this solve's iterations ran car's pass (the multibodies' changes are held back)
   std::vector<std::pair<btMultiBody*, int>> touched_;  // multibodies with rows, their velocity-change offsets
   bool own_ = false;                 // this solve sets up its contact rows itself

@@ -115,3 +115,89 @@ TEST(InverseMass, SeedCarMatchesBulletsPass) {
   run(p, 200);
   EXPECT_LT(worst_error(r.multibody()), 1e-9);
 }
+
+namespace {
+
+// Largest |InverseMass::free_acceleration - Bullet's free-motion pass| over the accelerations, relative to the
+// largest of Bullet's, with a force and a torque on every body and an effort on every joint (seeded).
+double free_motion_error(btMultiBody* mb) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto vec = [&] { return btVector3(u(rng), u(rng), u(rng)); };
+  mb->addBaseForce(vec() + btVector3(0, 0, -9.81 * mb->getBaseMass()));
+  mb->addBaseTorque(vec());
+  for (int i = 0; i < mb->getNumLinks(); ++i) {
+    mb->addLinkForce(i, vec());
+    mb->addLinkTorque(i, vec());
+    if (mb->getLink(i).m_dofCount == 1) mb->addJointTorque(i, u(rng));
+  }
+  btAlignedObjectArray<btScalar> r;
+  btAlignedObjectArray<btVector3> v;
+  btAlignedObjectArray<btMatrix3x3> m;
+  // dt 0: Bullet's pass leaves the velocities alone; its accelerations follow the dofs' "Y" entries in r
+  mb->computeAccelerationsArticulatedBodyAlgorithmMultiDof(0, r, v, m, false, false, false);
+  const int n = 6 + mb->getNumDofs();
+  std::vector<btScalar> ours(n);
+  physics::InverseMass inv;
+  EXPECT_TRUE(physics::InverseMass::free_motion_supported(*mb));
+  EXPECT_TRUE(inv.build(*mb));
+  inv.free_acceleration(*mb, ours.data());
+  double scale = 0, err = 0;
+  for (int i = 0; i < n; ++i) {
+    const double bullet = r[mb->getNumDofs() + i];
+    scale = std::max(scale, std::abs(bullet));
+    err = std::max(err, std::abs(bullet - ours[i]));
+  }
+  mb->clearForcesAndTorques();
+  return err / scale;
+}
+
+}  // namespace
+
+TEST(InverseMass, FreeMotionOfAFloatingTreeIsBulletsPass) {
+  physics::Physics p(flat(), options(), {});
+  physics::Robot& r = p.add_robot(tree(), "tree", pose(0.3, -0.2, 0.5, 0.7, 0.2), {});
+  r.set_joint_position(r.joint("upper_joint"), 0.6);
+  r.set_joint_position(r.joint("slider_joint"), 0.05);
+  r.set_root_velocity(Eigen::Vector3d(0.3, -0.1, 0.2), Eigen::Vector3d(0.5, 0.2, -0.4));
+  run(p, 50);
+  btMultiBody* mb = r.multibody();
+  // the joints moving too: every velocity-product term of the tree counts
+  for (int i = 0; i < mb->getNumLinks(); ++i) mb->setJointVel(i, 0.7 - 0.45 * i);
+  EXPECT_LT(free_motion_error(mb), 1e-9);
+}
+
+TEST(InverseMass, FreeMotionOfAFixedBaseArmIsBulletsPass) {
+  physics::Physics p(flat(), options(), {});
+  physics::Robot& r = p.add_robot(fixed_arm(), "arm", pose(0, 0, 0), {});
+  r.set_joint_position(r.joint("upper_joint"), 0.4);
+  r.set_joint_position(r.joint("fore_joint"), -0.9);
+  run(p, 50);
+  btMultiBody* mb = r.multibody();
+  for (int i = 0; i < mb->getNumLinks(); ++i) mb->setJointVel(i, 1.1 - 0.6 * i);
+  EXPECT_LT(free_motion_error(mb), 1e-9);
+}
+
+TEST(InverseMass, FreeMotionWithDampingAndNoGyroscopicTermIsBulletsPass) {
+  physics::Physics p(flat(), options(), {});
+  physics::Robot& r = p.add_robot(tree(), "tree", pose(0.3, -0.2, 0.5, 0.7, 0.2), {});
+  r.set_root_velocity(Eigen::Vector3d(0.3, -0.1, 0.2), Eigen::Vector3d(0.5, 0.2, -0.4));
+  run(p, 20);
+  btMultiBody* mb = r.multibody();
+  for (int i = 0; i < mb->getNumLinks(); ++i) mb->setJointVel(i, 0.4 + 0.3 * i);
+  mb->setLinearDamping(0.04);
+  mb->setAngularDamping(0.07);
+  mb->setUseGyroTerm(false);
+  EXPECT_LT(free_motion_error(mb), 1e-9);
+}
+
+TEST(InverseMass, FreeMotionOfTheSeedCarIsBulletsPass) {
+  physics::Physics p(flat(), options(), {});
+  physics::Robot& r = p.add_robot(load_urdf_file(std::string(CAR_SOURCE_DIR) + "/test/data/car_camera_lidar04.urdf"),
+                                  "car", pose(0, 0, 0.05, 0.4), {});
+  r.set_root_velocity(Eigen::Vector3d(0.2, 0.1, 0), Eigen::Vector3d(0, 0, 1.0));
+  run(p, 200);
+  btMultiBody* mb = r.multibody();
+  for (int i = 0; i < mb->getNumLinks(); ++i) mb->setJointVel(i, 3.0 - 1.5 * i);
+  EXPECT_LT(free_motion_error(mb), 1e-9);
+}

@@ -234,7 +234,7 @@ def test_huge_mass_is_named_by_the_mass_range_finding_not_a_nan_percentage():
     with open(path) as f:
         r = model_check.check_text(f.read(), path)
     assert [f for f in r['findings'] if f['code'] == 'inertia-mismatch'] == []
-    f = finding(r, 'mass-range', 'link[base_link]/inertial/mass')
+    f = finding(r, 'mass-range', 'link[wheel]/inertial/mass')
     assert f['message'] == ('mass 1e+300 kg is outside 1e-06..1e+06 kg (a unit mistake? the solver loses accuracy '
                             'at such masses)')
     assert 'nan' not in model_check.format_report(r)

@@ -103,7 +103,7 @@ class BadServicesTest(unittest.TestCase):
         pub.unregister()
 
     def test_a_robot_that_blows_up_pauses_the_node_without_publishing_nan(self):
-        # mass 1e300 kg: loads with a warning; the solver turns its state non-finite on the first contact steps
+        # a 1e300 kg wheel: loads with a warning; the solver turns its state non-finite within the first steps
         with open(os.path.join(BAD, 'mass_huge.urdf'), encoding='utf-8') as f:
             xml = f.read()
         states, logs = [], []
