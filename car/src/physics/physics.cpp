@@ -5,6 +5,7 @@
 
 #include <btBulletDynamicsCommon.h>
 #include <BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h>
+#include <BulletCollision/CollisionDispatch/btConvexPlaneCollisionAlgorithm.h>
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
@@ -132,6 +133,123 @@ namespace {
 // together (a sliding box then stands on one corner for a step and rocks); here each corner's point is replaced
 // every step (the manifold matches it to its cached point, keeping the warm start) and the manifold keeps at most
 // 4 (docs/COMPAT-physics.md "Contact points").
+// Whether a convex shape is clearly beyond a plane's contact distance: its bounding sphere (centre in the shape's
+// frame, radius [m]) lies above the plane by more than the manifold's contact breaking threshold and the result's
+// closest-point distance, by a margin for the rounding of the two routes to a distance.
+bool clearly_apart(const btCollisionObjectWrapper* convex, const btCollisionObjectWrapper* plane,
+                   const btVector3& centre, btScalar radius, const btPersistentManifold* manifold,
+                   const btManifoldResult* out) {
+  const auto* ground = static_cast<const btStaticPlaneShape*>(plane->getCollisionShape());
+  const btTransform& tp = plane->getWorldTransform();
+  const btVector3 c = convex->getWorldTransform()(centre);  // world
+  const btScalar offset = ground->getPlaneConstant();
+  // [m] the sphere's lowest point above the plane, along its normal
+  const btScalar gap = (tp.getBasis() * ground->getPlaneNormal()).dot(c - tp.getOrigin()) - offset - radius;
+  const btScalar limit = manifold->getContactBreakingThreshold() + out->m_closestPointDistanceThreshold;
+  const btScalar slack = 1e-9 * (c.length() + tp.getOrigin().length() + std::abs(offset) + radius) + 1e-9;
+  return gap > limit + slack;
+}
+
+// Bullet's convex-plane algorithm (a cylinder, capsule, cone or hull on a plane), skipped while its manifold is empty
+// and the shape is clearly apart from the plane: Bullet's pass would find no point there and leave the manifold
+// empty, so the state is the same bit for bit, without its two transform products and support query. A robot's
+// body parts above the ground (a lidar, a camera mount in the base's compound) spend every step so.
+class ConvexPlaneAlgorithm : public btConvexPlaneCollisionAlgorithm {
+ public:
+  ConvexPlaneAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* a,
+                       const btCollisionObjectWrapper* b, bool swapped, int iterations, int threshold)
+      : btConvexPlaneCollisionAlgorithm(nullptr, ci, a, b, swapped, iterations, threshold), swapped_(swapped) {
+    btManifoldArray own;
+    getAllContactManifolds(own);
+    manifold_ = own.size() ? own[0] : nullptr;
+    (swapped ? b : a)->getCollisionShape()->getBoundingSphere(centre_, radius_);
+  }
+  void processCollision(const btCollisionObjectWrapper* a, const btCollisionObjectWrapper* b,
+                        const btDispatcherInfo& info, btManifoldResult* out) override {
+    if (manifold_ && !manifold_->getNumContacts() &&
+        clearly_apart(swapped_ ? b : a, swapped_ ? a : b, centre_, radius_, manifold_, out)) {
+      out->setPersistentManifold(manifold_);
+      return;
+    }
+    btConvexPlaneCollisionAlgorithm::processCollision(a, b, info, out);
+  }
+
+  // Bullet's create function's settings (perturbation iterations and threshold), car's algorithm
+  struct CreateFunc : btConvexPlaneCollisionAlgorithm::CreateFunc {
+    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                   const btCollisionObjectWrapper* a,
+                                                   const btCollisionObjectWrapper* b) override {
+      void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(ConvexPlaneAlgorithm));
+      return new (mem) ConvexPlaneAlgorithm(ci, a, b, m_swapped, m_numPerturbationIterations,
+                                            m_minimumPointsPerturbationThreshold);
+    }
+  };
+
+ private:
+  btPersistentManifold* manifold_ = nullptr;
+  bool swapped_;
+  btVector3 centre_;  // [m], the shape's frame
+  btScalar radius_ = 0;
+};
+
+// A sphere against a plane: one point, the sphere's lowest along the plane's normal, as ODE's dCollideSpherePlane
+// and Bullet's convex-plane algorithm find it; Bullet's turns the plane into the sphere's frame and the point back
+// (two transform products and a support query) to get the centre less the radius along the normal. Contact within
+// the manifold's breaking threshold, as Bullet's; the manifold refreshed as Bullet's (docs/COMPAT-physics.md
+// "Contact points").
+class SpherePlaneAlgorithm : public SettledAlgorithm {
+ public:
+  SpherePlaneAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* a,
+                       const btCollisionObjectWrapper* b, bool swapped)
+      : SettledAlgorithm(ci, a, b), swapped_(swapped) {
+    const btCollisionObjectWrapper* sphere = swapped ? b : a;
+    const btCollisionObjectWrapper* plane = swapped ? a : b;
+    if (m_dispatcher->needsCollision(sphere->getCollisionObject(), plane->getCollisionObject()))
+      manifold_ = m_dispatcher->getNewManifold(sphere->getCollisionObject(), plane->getCollisionObject());
+  }
+  ~SpherePlaneAlgorithm() override {
+    if (manifold_) m_dispatcher->releaseManifold(manifold_);
+  }
+
+  void processCollision(const btCollisionObjectWrapper* a, const btCollisionObjectWrapper* b, const btDispatcherInfo&,
+                        btManifoldResult* out) override {
+    if (!manifold_) return;
+    const btCollisionObjectWrapper* sphere = swapped_ ? b : a;
+    const btCollisionObjectWrapper* plane = swapped_ ? a : b;
+    const auto* shape = static_cast<const btSphereShape*>(sphere->getCollisionShape());
+    const auto* ground = static_cast<const btStaticPlaneShape*>(plane->getCollisionShape());
+    const btTransform& tp = plane->getWorldTransform();
+    const btVector3 normal = tp.getBasis() * ground->getPlaneNormal();  // world
+    // the sphere's lowest point (world) and its distance from the plane [m] (negative: below)
+    const btVector3 low = sphere->getWorldTransform().getOrigin() - normal * shape->getRadius();
+    const btScalar distance = normal.dot(low - tp.getOrigin()) - ground->getPlaneConstant();
+    out->setPersistentManifold(manifold_);
+    if (distance < manifold_->getContactBreakingThreshold() + out->m_closestPointDistanceThreshold)
+      out->addContactPoint(normal, low - normal * distance, distance);
+    if (manifold_->getNumContacts()) out->refreshContactPoints();
+  }
+  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
+                                 btManifoldResult*) override {
+    return btScalar(1);
+  }
+  void getAllContactManifolds(btManifoldArray& manifolds) override {
+    if (manifold_) manifolds.push_back(manifold_);
+  }
+
+  struct CreateFunc : btCollisionAlgorithmCreateFunc {
+    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                   const btCollisionObjectWrapper* a,
+                                                   const btCollisionObjectWrapper* b) override {
+      void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(SpherePlaneAlgorithm));
+      return new (mem) SpherePlaneAlgorithm(ci, a, b, m_swapped);
+    }
+  };
+
+ private:
+  btPersistentManifold* manifold_ = nullptr;
+  bool swapped_;
+};
+
 class BoxPlaneAlgorithm : public SettledAlgorithm {
  public:
   BoxPlaneAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* a,
@@ -141,6 +259,7 @@ class BoxPlaneAlgorithm : public SettledAlgorithm {
     const btCollisionObjectWrapper* plane = swapped ? a : b;
     if (m_dispatcher->needsCollision(box->getCollisionObject(), plane->getCollisionObject()))
       manifold_ = m_dispatcher->getNewManifold(box->getCollisionObject(), plane->getCollisionObject());
+    box->getCollisionShape()->getBoundingSphere(centre_, radius_);
   }
   ~BoxPlaneAlgorithm() override {
     if (manifold_) m_dispatcher->releaseManifold(manifold_);
@@ -151,6 +270,11 @@ class BoxPlaneAlgorithm : public SettledAlgorithm {
     if (!manifold_) return;
     const btCollisionObjectWrapper* box = swapped_ ? b : a;
     const btCollisionObjectWrapper* plane = swapped_ ? a : b;
+    // no corner can be near (the same empty manifold as the corners' test gives)
+    if (!manifold_->getNumContacts() && clearly_apart(box, plane, centre_, radius_, manifold_, out)) {
+      out->setPersistentManifold(manifold_);
+      return;
+    }
     const auto* shape = static_cast<const btBoxShape*>(box->getCollisionShape());
     const auto* ground = static_cast<const btStaticPlaneShape*>(plane->getCollisionShape());
     // the plane's normal and offset [m] in its own frame; the box's pose in the plane's frame
@@ -190,20 +314,37 @@ class BoxPlaneAlgorithm : public SettledAlgorithm {
  private:
   btPersistentManifold* manifold_ = nullptr;
   bool swapped_;
+  btVector3 centre_;  // [m], bounding sphere in the box's frame
+  btScalar radius_ = 0;
 };
 
-// Bullet's collision algorithms, except a box against a plane (BoxPlaneAlgorithm).
+// Bullet's collision algorithms, except a convex shape against a plane: a box (BoxPlaneAlgorithm), a sphere
+// (SpherePlaneAlgorithm), any other (ConvexPlaneAlgorithm, Bullet's with its early exit).
 class CollisionConfig : public btDefaultCollisionConfiguration {
  public:
-  CollisionConfig() { plane_box_.m_swapped = true; }
+  CollisionConfig() {
+    plane_box_.m_swapped = true;
+    plane_sphere_.m_swapped = true;
+    plane_convex_.m_swapped = true;
+  }
   btCollisionAlgorithmCreateFunc* getCollisionAlgorithmCreateFunc(int a, int b) override {
-    if (a == BOX_SHAPE_PROXYTYPE && b == STATIC_PLANE_PROXYTYPE) return &box_plane_;
-    if (a == STATIC_PLANE_PROXYTYPE && b == BOX_SHAPE_PROXYTYPE) return &plane_box_;
+    if (b == STATIC_PLANE_PROXYTYPE) {
+      if (a == BOX_SHAPE_PROXYTYPE) return &box_plane_;
+      if (a == SPHERE_SHAPE_PROXYTYPE) return &sphere_plane_;
+      if (btBroadphaseProxy::isConvex(a)) return &convex_plane_;
+    }
+    if (a == STATIC_PLANE_PROXYTYPE) {
+      if (b == BOX_SHAPE_PROXYTYPE) return &plane_box_;
+      if (b == SPHERE_SHAPE_PROXYTYPE) return &plane_sphere_;
+      if (btBroadphaseProxy::isConvex(b)) return &plane_convex_;
+    }
     return btDefaultCollisionConfiguration::getCollisionAlgorithmCreateFunc(a, b);
   }
 
  private:
   BoxPlaneAlgorithm::CreateFunc box_plane_, plane_box_;
+  SpherePlaneAlgorithm::CreateFunc sphere_plane_, plane_sphere_;
+  ConvexPlaneAlgorithm::CreateFunc convex_plane_, plane_convex_;
 };
 
 }  // namespace
