@@ -78,7 +78,9 @@ struct CompoundAccess : btCompoundCollisionAlgorithm {
 // convex-on-plane algorithm (a plane's bounding box covers every child, so Bullet never drops one).
 // An algorithm that writes only the manifold it was made with: Bullet's convex-plane one, or one of car's.
 bool writes_own_manifold(const btCollisionAlgorithm* a) {
-  return dynamic_cast<const btConvexPlaneCollisionAlgorithm*>(a) || dynamic_cast<const SettledAlgorithm*>(a);
+  if (dynamic_cast<const btConvexPlaneCollisionAlgorithm*>(a)) return true;
+  const auto* s = dynamic_cast<const SettledAlgorithm*>(a);
+  return s && s->settled();
 }
 
 bool settled(const btBroadphasePair& p) {

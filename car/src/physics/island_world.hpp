@@ -27,6 +27,8 @@ namespace physics {
 class SettledAlgorithm : public btActivatingCollisionAlgorithm {
  public:
   using btActivatingCollisionAlgorithm::btActivatingCollisionAlgorithm;
+  // false while its next processCollision may make or free algorithms or manifolds (a compound's changed shape)
+  virtual bool settled() const { return true; }
 };
 
 // Bullet's dispatcher, with the narrow phase of the pairs that can no longer allocate on the OpenMP threads: a

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <map>
 #include <stdexcept>
+#include <vector>
 
 #include "bodies.hpp"
 #include "guard.hpp"
@@ -318,25 +319,135 @@ class BoxPlaneAlgorithm : public SettledAlgorithm {
   btScalar radius_ = 0;
 };
 
-// Bullet's collision algorithms, except a convex shape against a plane: a box (BoxPlaneAlgorithm), a sphere
-// (SpherePlaneAlgorithm), any other (ConvexPlaneAlgorithm, Bullet's with its early exit).
+// A compound shape (a robot body of several collisions) against a plane: Bullet's btCompoundCollisionAlgorithm
+// for the case where the other shape's bounding box covers every child, as a plane's does: every child has its
+// algorithm (a plane one above) for as long as the shape is unchanged, so there is no tree query for overlapping
+// children, no bounding box per child and step, and no pass to drop children that stopped overlapping. Per step,
+// as Bullet's: the children's manifolds that hold points are refreshed, then each child collides at its world pose
+// with the result's shape identifiers set to its index (car's surface rules read them).
+class CompoundPlaneAlgorithm : public SettledAlgorithm {
+ public:
+  CompoundPlaneAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* a,
+                         const btCollisionObjectWrapper* b, bool swapped)
+      : SettledAlgorithm(ci, a, b), swapped_(swapped) {
+    make_children(a, b);
+  }
+  ~CompoundPlaneAlgorithm() override { free_children(); }
+
+  bool settled() const override { return compound_->getUpdateRevision() == revision_; }
+
+  void processCollision(const btCollisionObjectWrapper* a, const btCollisionObjectWrapper* b,
+                        const btDispatcherInfo& info, btManifoldResult* out) override {
+    const btCollisionObjectWrapper* body = swapped_ ? b : a;
+    const btCollisionObjectWrapper* plane = swapped_ ? a : b;
+    if (!settled()) {
+      free_children();
+      make_children(a, b);
+    }
+    for (btCollisionAlgorithm* child : children_) {
+      manifolds_.resize(0);
+      child->getAllContactManifolds(manifolds_);
+      for (int m = 0; m < manifolds_.size(); ++m)
+        if (manifolds_[m]->getNumContacts()) {
+          out->setPersistentManifold(manifolds_[m]);
+          out->refreshContactPoints();
+          out->setPersistentManifold(nullptr);
+        }
+    }
+    const btTransform& pose = body->getWorldTransform();
+    for (int i = 0; i < static_cast<int>(children_.size()); ++i) {
+      const btTransform& in_body = compound_->getChildTransform(i);
+      btTransform pre = in_body;
+      if (body->m_preTransform) pre = pre * *body->m_preTransform;
+      // (the wrapper keeps references to both transforms)
+      const btTransform world = pose * in_body;
+      const btCollisionObjectWrapper child(body, compound_->getChildShape(i), body->getCollisionObject(), world, pre,
+                                           -1, i);
+      const bool first = out->getBody0Internal() == body->getCollisionObject();
+      const btCollisionObjectWrapper* kept = first ? out->getBody0Wrap() : out->getBody1Wrap();
+      if (first) {
+        out->setBody0Wrap(&child);
+        out->setShapeIdentifiersA(-1, i);
+      } else {
+        out->setBody1Wrap(&child);
+        out->setShapeIdentifiersB(-1, i);
+      }
+      children_[i]->processCollision(&child, plane, info, out);
+      if (first)
+        out->setBody0Wrap(kept);
+      else
+        out->setBody1Wrap(kept);
+    }
+  }
+  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
+                                 btManifoldResult*) override {
+    // every child's against a plane is 1 (Bullet's convex-plane algorithm's), so the compound's is
+    return btScalar(1);
+  }
+  void getAllContactManifolds(btManifoldArray& manifolds) override {
+    for (btCollisionAlgorithm* child : children_) child->getAllContactManifolds(manifolds);
+  }
+
+  struct CreateFunc : btCollisionAlgorithmCreateFunc {
+    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                   const btCollisionObjectWrapper* a,
+                                                   const btCollisionObjectWrapper* b) override {
+      void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(CompoundPlaneAlgorithm));
+      return new (mem) CompoundPlaneAlgorithm(ci, a, b, m_swapped);
+    }
+  };
+
+ private:
+  void make_children(const btCollisionObjectWrapper* a, const btCollisionObjectWrapper* b) {
+    const btCollisionObjectWrapper* body = swapped_ ? b : a;
+    const btCollisionObjectWrapper* plane = swapped_ ? a : b;
+    compound_ = static_cast<const btCompoundShape*>(body->getCollisionShape());
+    revision_ = compound_->getUpdateRevision();
+    children_.resize(compound_->getNumChildShapes());
+    for (int i = 0; i < static_cast<int>(children_.size()); ++i) {
+      const btTransform world = body->getWorldTransform() * compound_->getChildTransform(i);
+      const btCollisionObjectWrapper child(body, compound_->getChildShape(i), body->getCollisionObject(), world, -1, i);
+      children_[i] = m_dispatcher->findAlgorithm(&child, plane, nullptr, BT_CONTACT_POINT_ALGORITHMS);
+    }
+  }
+  void free_children() {
+    for (btCollisionAlgorithm* child : children_) {
+      child->~btCollisionAlgorithm();
+      m_dispatcher->freeCollisionAlgorithm(child);
+    }
+    children_.clear();
+  }
+
+  bool swapped_;
+  const btCompoundShape* compound_ = nullptr;
+  int revision_ = 0;
+  std::vector<btCollisionAlgorithm*> children_;  // per child shape
+  btManifoldArray manifolds_;
+};
+
+// Bullet's collision algorithms, except a shape against a plane: a box (BoxPlaneAlgorithm), a sphere
+// (SpherePlaneAlgorithm), another convex shape (ConvexPlaneAlgorithm, Bullet's with its early exit), a compound
+// (CompoundPlaneAlgorithm).
 class CollisionConfig : public btDefaultCollisionConfiguration {
  public:
   CollisionConfig() {
     plane_box_.m_swapped = true;
     plane_sphere_.m_swapped = true;
     plane_convex_.m_swapped = true;
+    plane_compound_.m_swapped = true;
   }
   btCollisionAlgorithmCreateFunc* getCollisionAlgorithmCreateFunc(int a, int b) override {
     if (b == STATIC_PLANE_PROXYTYPE) {
       if (a == BOX_SHAPE_PROXYTYPE) return &box_plane_;
       if (a == SPHERE_SHAPE_PROXYTYPE) return &sphere_plane_;
       if (btBroadphaseProxy::isConvex(a)) return &convex_plane_;
+      if (a == COMPOUND_SHAPE_PROXYTYPE) return &compound_plane_;
     }
     if (a == STATIC_PLANE_PROXYTYPE) {
       if (b == BOX_SHAPE_PROXYTYPE) return &plane_box_;
       if (b == SPHERE_SHAPE_PROXYTYPE) return &plane_sphere_;
       if (btBroadphaseProxy::isConvex(b)) return &plane_convex_;
+      if (b == COMPOUND_SHAPE_PROXYTYPE) return &plane_compound_;
     }
     return btDefaultCollisionConfiguration::getCollisionAlgorithmCreateFunc(a, b);
   }
@@ -345,6 +456,7 @@ class CollisionConfig : public btDefaultCollisionConfiguration {
   BoxPlaneAlgorithm::CreateFunc box_plane_, plane_box_;
   SpherePlaneAlgorithm::CreateFunc sphere_plane_, plane_sphere_;
   ConvexPlaneAlgorithm::CreateFunc convex_plane_, plane_convex_;
+  CompoundPlaneAlgorithm::CreateFunc compound_plane_, plane_compound_;
 };
 
 }  // namespace

@@ -85,3 +85,40 @@ TEST(PlaneContacts, ADroppedBoxLandsOnThePlane) {
   EXPECT_GT(lowest, 0.1 - 1e-3);
   EXPECT_NEAR(r.root_state().pose.translation().z(), 0.1, 1e-3);
 }
+
+TEST(PlaneContacts, ACompoundRestsOnTheCornersOfEachChild) {
+  // one link, two 0.1 m cubes centred at x = +-0.1 (a compound shape), dropped from 0.3 m: it rests with its
+  // origin at 0.05 m on bottom corners of both cubes (the solver may leave one of the eight without load), which
+  // carry m g = 10 N together
+  physics::Physics p(flat(), options(), {});
+  const RobotModel m = load_urdf_string(
+      "<robot name=\"pair\"><link name=\"base\">" + box_inertial(1.0, 0.3, 0.1, 0.1) +
+          "<collision><origin xyz=\"0.1 0 0\"/><geometry><box size=\"0.1 0.1 0.1\"/></geometry></collision>"
+          "<collision><origin xyz=\"-0.1 0 0\"/><geometry><box size=\"0.1 0.1 0.1\"/></geometry></collision>"
+          "</link></robot>",
+      "pair.urdf");
+  physics::Robot& r = p.add_robot(m, "pair", pose(0, 0, 0.3), {});
+  run(p, 1500);
+  EXPECT_NEAR(r.root_state().pose.translation().z(), 0.05, 1e-3);
+  const std::vector<Contact> c = p.contacts(kDt);
+  ASSERT_GE(c.size(), 3u);
+  ASSERT_LE(c.size(), 8u);
+  double force = 0, right = 0, moment_x = 0, moment_y = 0;
+  for (const Contact& k : c) {
+    // a corner: x at 0.05 or 0.15 from the middle, y at 0.05
+    const double x = std::abs(k.position.x());
+    EXPECT_NEAR(std::min(std::abs(x - 0.05), std::abs(x - 0.15)), 0.0, 1e-4) << k.position.transpose();
+    EXPECT_NEAR(std::abs(k.position.y()), 0.05, 1e-4) << k.position.transpose();
+    force += k.normal_force;
+    if (k.position.x() > 0) right += k.normal_force;
+    moment_x += k.normal_force * k.position.x();
+    moment_y += k.normal_force * k.position.y();
+  }
+  EXPECT_NEAR(force, 10.0, 0.1);
+  // at rest about its centre of mass (the split between the corners is the solver's: the rest is statically
+  // indeterminate), on both cubes
+  EXPECT_NEAR(moment_x, 0.0, 0.01);
+  EXPECT_NEAR(moment_y, 0.0, 0.01);
+  EXPECT_GT(right, 0.5);
+  EXPECT_GT(force - right, 0.5);
+}
