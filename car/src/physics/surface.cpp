@@ -596,6 +596,16 @@ void SurfaceSolver::make_refs(const btContactSolverInfo& info) {
       out[i].a = side(c.m_multiBodyA, c.m_jacAindex, c.m_deltaVelAindex, c.m_solverBodyIdA);
       out[i].b = side(c.m_multiBodyB, c.m_jacBindex, c.m_deltaVelBindex, c.m_solverBodyIdB);
       RowRef& r = out[i];
+      // a multibody side whose Jacobian and response are all zero (a joint motor's second side) adds only zeros to
+      // the sums and velocities: left out, which changes no finite value (a state already infinite stays
+      // non-finite either way, and the guard stops the world)
+      auto zero = [](const Side& q) {
+        for (int k = 0; k < q.n; ++k)
+          if (q.jac[k] != 0 || q.unit[k] != 0) return false;
+        return true;
+      };
+      if (r.a.n && r.b.n && zero(r.b)) r.b = Side();
+      if (r.a.n && r.b.n && zero(r.a)) r.a = Side();
       const bool still_a = !r.a.n && !r.a.body, still_b = !r.b.n && !r.b.body;
       if (r.a.n && r.b.n) {
         r.shape = 2;
