@@ -84,11 +84,13 @@ bool InverseMass::build(const btMultiBody& mb) {
     }
   }
   double* M = l_.data();
-  // lower triangle: row >= column, indices of the full 6 + dofs layout
-  auto add = [&](int row, int col, double x) {
-    if (col > row) std::swap(row, col);
-    M[static_cast<size_t>(row - off_) * m + (col - off_)] += x;
-  };
+  // M's entry (row, col), row >= col, in the full 6 + dofs layout
+  auto at = [&](int row, int col) -> double& { return M[static_cast<size_t>(row - off_) * m + (col - off_)]; };
+  // the base block's sums over the bodies: mass [kg], first moment about the base's centre of mass [kg m], inertia
+  // about it [kg m^2] (lower triangle)
+  double total = 0;
+  btVector3 moment(0, 0, 0);
+  double inertia_sum[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
   for (int b = 0; b < bodies; ++b) {
     if (b == 0 && fixed) continue;
     const btScalar mass = b == 0 ? mb.getBaseMass() : mb.getLink(b - 1).m_mass;
@@ -98,7 +100,7 @@ bool InverseMass::build(const btMultiBody& mb) {
     iw_[b] = R.scaled(inertia) * R.transpose();
     const btMatrix3x3& iw = iw_[b];
     // the joints from the body up to the base: a unit rate of dof d of link j turns the body with a_d about link
-    // j's centre of mass and moves that point with b_d (Bullet's spatial axis, frame j)
+    // j's centre of mass and moves that point with b_d (Bullet's spatial axis, frame j); columns in decreasing order
     int k = 0;
     for (int j = b - 1; j >= 0; j = mb.getLink(j).m_parent) {
       const btMultibodyLink& l = mb.getLink(j);
@@ -116,26 +118,32 @@ bool InverseMass::build(const btMultiBody& mb) {
     for (int p = 0; p < k; ++p) {
       const btVector3 iwp = iw * w_[p];
       for (int q = 0; q < k; ++q)
-        if (cols_[q] <= cols_[p]) add(cols_[p], cols_[q], mass * u_[p].dot(u_[q]) + iwp.dot(w_[q]));
+        if (cols_[q] <= cols_[p]) at(cols_[p], cols_[q]) += mass * u_[p].dot(u_[q]) + iwp.dot(w_[q]);
       if (!fixed) {
         const btVector3 rot = mass * r.cross(u_[p]) + iwp;
         for (int a = 0; a < 3; ++a) {
-          add(cols_[p], a, rot[a]);
-          add(cols_[p], 3 + a, mass * u_[p][a]);
+          at(cols_[p], a) += rot[a];
+          at(cols_[p], 3 + a) += mass * u_[p][a];
         }
       }
     }
     if (!fixed) {
       const double rr = r.length2();
-      for (int a = 0; a < 3; ++a) {
-        for (int c = 0; c <= a; ++c) add(a, c, iw[a][c] + mass * ((a == c ? rr : 0.0) - r[a] * r[c]));
-        btVector3 e(0, 0, 0);
-        e[a] = 1;
-        // M[v_c, w_a] = m (e_a x r)_c
-        const btVector3 exr = e.cross(r);
-        for (int c = 0; c < 3; ++c) add(3 + c, a, mass * exr[c]);
-        add(3 + a, 3 + a, mass);
-      }
+      total += mass;
+      moment += mass * r;
+      for (int a = 0; a < 3; ++a)
+        for (int c = 0; c <= a; ++c) inertia_sum[a][c] += iw[a][c] + mass * ((a == c ? rr : 0.0) - r[a] * r[c]);
+    }
+  }
+  if (!fixed) {
+    for (int a = 0; a < 3; ++a) {
+      for (int c = 0; c <= a; ++c) at(a, c) = inertia_sum[a][c];
+      btVector3 e(0, 0, 0);
+      e[a] = 1;
+      // M[v_c, w_a] = sum m (e_a x r)_c
+      const btVector3 exr = e.cross(moment);
+      for (int c = 0; c < 3; ++c) at(3 + c, a) = exr[c];
+      at(3 + a, 3 + a) = total;
     }
   }
 
