@@ -349,9 +349,15 @@ void SurfaceSolver::convert(btPersistentManifold* m, const btContactSolverInfo& 
     const PairSurface p = combine(co0, surface_at(co0, cp.m_index0), co1, surface_at(co1, cp.m_index1));
     if (p.max_contacts) keep = keep ? std::min(*keep, *p.max_contacts) : *p.max_contacts;
   }
-  std::stable_sort(order.begin(), order.begin() + used, [&](int x, int y) {
-    return m->getContactPoint(x).getDistance() < m->getContactPoint(y).getDistance();
-  });
+  // deepest first, ties in manifold order (a stable insertion sort: std::stable_sort's order without its buffer,
+  // which it allocates on every call)
+  for (int i = 1; i < used; ++i) {
+    const int x = order[i];
+    const btScalar d = m->getContactPoint(x).getDistance();
+    int k = i;
+    for (; k > 0 && d < m->getContactPoint(order[k - 1]).getDistance(); --k) order[k] = order[k - 1];
+    order[k] = x;
+  }
   if (keep && *keep < used) used = std::max(*keep, 0);
   std::array<bool, kManifoldPoints> active{};
   for (int k = 0; k < used; ++k) active[order[k]] = true;
