@@ -127,13 +127,6 @@ std::unique_ptr<SurfaceSet> world_surface(const std::vector<WorldCollision>& col
 
 namespace {
 
-// A box against a plane as ODE's dCollideBoxPlane: every corner of the box within the manifold's contact
-// breaking distance of the plane is a contact point, every step, at the corner's own distance [m] (negative:
-// below). Bullet's plane algorithm adds one point per step (the deepest corner), and its multipoint option only
-// while the manifold holds few points, so the other corners' points go stale as the box slides and are dropped
-// together (a sliding box then stands on one corner for a step and rocks); here each corner's point is replaced
-// every step (the manifold matches it to its cached point, keeping the warm start) and the manifold keeps at most
-// 4 (docs/COMPAT-physics.md "Contact points").
 // Whether a convex shape is clearly beyond a plane's contact distance: its bounding sphere (centre in the shape's
 // frame, radius [m]) lies above the plane by more than the manifold's contact breaking threshold and the result's
 // closest-point distance, by a margin for the rounding of the two routes to a distance.
@@ -193,24 +186,51 @@ class ConvexPlaneAlgorithm : public btConvexPlaneCollisionAlgorithm {
   btScalar radius_ = 0;
 };
 
+// One of car's algorithms for a shape against a plane: it owns one manifold, made with it (when the pair may
+// collide), so the dispatcher counts its pair as settled; no time of impact (a plane sweeps nothing).
+template <class Derived>
+class PlaneManifoldAlgorithm : public SettledAlgorithm {
+ public:
+  PlaneManifoldAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* a,
+                         const btCollisionObjectWrapper* b, bool swapped)
+      : SettledAlgorithm(ci, a, b), swapped_(swapped) {
+    const btCollisionObject* shape = (swapped ? b : a)->getCollisionObject();
+    const btCollisionObject* plane = (swapped ? a : b)->getCollisionObject();
+    if (m_dispatcher->needsCollision(shape, plane)) manifold_ = m_dispatcher->getNewManifold(shape, plane);
+  }
+  ~PlaneManifoldAlgorithm() override {
+    if (manifold_) m_dispatcher->releaseManifold(manifold_);
+  }
+  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
+                                 btManifoldResult*) override {
+    return btScalar(1);
+  }
+  void getAllContactManifolds(btManifoldArray& manifolds) override {
+    if (manifold_) manifolds.push_back(manifold_);
+  }
+
+  struct CreateFunc : btCollisionAlgorithmCreateFunc {
+    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                   const btCollisionObjectWrapper* a,
+                                                   const btCollisionObjectWrapper* b) override {
+      void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(Derived));
+      return new (mem) Derived(ci, a, b, m_swapped);
+    }
+  };
+
+ protected:
+  btPersistentManifold* manifold_ = nullptr;
+  bool swapped_;
+};
+
 // A sphere against a plane: one point, the sphere's lowest along the plane's normal, as ODE's dCollideSpherePlane
 // and Bullet's convex-plane algorithm find it; Bullet's turns the plane into the sphere's frame and the point back
 // (two transform products and a support query) to get the centre less the radius along the normal. Contact within
 // the manifold's breaking threshold, as Bullet's; the manifold refreshed as Bullet's (docs/COMPAT-physics.md
 // "Contact points").
-class SpherePlaneAlgorithm : public SettledAlgorithm {
+class SpherePlaneAlgorithm : public PlaneManifoldAlgorithm<SpherePlaneAlgorithm> {
  public:
-  SpherePlaneAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* a,
-                       const btCollisionObjectWrapper* b, bool swapped)
-      : SettledAlgorithm(ci, a, b), swapped_(swapped) {
-    const btCollisionObjectWrapper* sphere = swapped ? b : a;
-    const btCollisionObjectWrapper* plane = swapped ? a : b;
-    if (m_dispatcher->needsCollision(sphere->getCollisionObject(), plane->getCollisionObject()))
-      manifold_ = m_dispatcher->getNewManifold(sphere->getCollisionObject(), plane->getCollisionObject());
-  }
-  ~SpherePlaneAlgorithm() override {
-    if (manifold_) m_dispatcher->releaseManifold(manifold_);
-  }
+  using PlaneManifoldAlgorithm::PlaneManifoldAlgorithm;
 
   void processCollision(const btCollisionObjectWrapper* a, const btCollisionObjectWrapper* b, const btDispatcherInfo&,
                         btManifoldResult* out) override {
@@ -229,41 +249,21 @@ class SpherePlaneAlgorithm : public SettledAlgorithm {
       out->addContactPoint(normal, low - normal * distance, distance);
     if (manifold_->getNumContacts()) out->refreshContactPoints();
   }
-  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
-                                 btManifoldResult*) override {
-    return btScalar(1);
-  }
-  void getAllContactManifolds(btManifoldArray& manifolds) override {
-    if (manifold_) manifolds.push_back(manifold_);
-  }
-
-  struct CreateFunc : btCollisionAlgorithmCreateFunc {
-    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
-                                                   const btCollisionObjectWrapper* a,
-                                                   const btCollisionObjectWrapper* b) override {
-      void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(SpherePlaneAlgorithm));
-      return new (mem) SpherePlaneAlgorithm(ci, a, b, m_swapped);
-    }
-  };
-
- private:
-  btPersistentManifold* manifold_ = nullptr;
-  bool swapped_;
 };
 
-class BoxPlaneAlgorithm : public SettledAlgorithm {
+// A box against a plane as ODE's dCollideBoxPlane: every corner of the box within the manifold's contact
+// breaking distance of the plane is a contact point, every step, at the corner's own distance [m] (negative:
+// below). Bullet's plane algorithm adds one point per step (the deepest corner), and its multipoint option only
+// while the manifold holds few points, so the other corners' points go stale as the box slides and are dropped
+// together (a sliding box then stands on one corner for a step and rocks); here each corner's point is replaced
+// every step (the manifold matches it to its cached point, keeping the warm start) and the manifold keeps at most
+// 4 (docs/COMPAT-physics.md "Contact points").
+class BoxPlaneAlgorithm : public PlaneManifoldAlgorithm<BoxPlaneAlgorithm> {
  public:
   BoxPlaneAlgorithm(const btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* a,
                     const btCollisionObjectWrapper* b, bool swapped)
-      : SettledAlgorithm(ci, a, b), swapped_(swapped) {
-    const btCollisionObjectWrapper* box = swapped ? b : a;
-    const btCollisionObjectWrapper* plane = swapped ? a : b;
-    if (m_dispatcher->needsCollision(box->getCollisionObject(), plane->getCollisionObject()))
-      manifold_ = m_dispatcher->getNewManifold(box->getCollisionObject(), plane->getCollisionObject());
-    box->getCollisionShape()->getBoundingSphere(centre_, radius_);
-  }
-  ~BoxPlaneAlgorithm() override {
-    if (manifold_) m_dispatcher->releaseManifold(manifold_);
+      : PlaneManifoldAlgorithm(ci, a, b, swapped) {
+    (swapped ? b : a)->getCollisionShape()->getBoundingSphere(centre_, radius_);
   }
 
   void processCollision(const btCollisionObjectWrapper* a, const btCollisionObjectWrapper* b, const btDispatcherInfo&,
@@ -295,26 +295,8 @@ class BoxPlaneAlgorithm : public SettledAlgorithm {
     }
     if (manifold_->getNumContacts()) out->refreshContactPoints();
   }
-  btScalar calculateTimeOfImpact(btCollisionObject*, btCollisionObject*, const btDispatcherInfo&,
-                                 btManifoldResult*) override {
-    return btScalar(1);
-  }
-  void getAllContactManifolds(btManifoldArray& manifolds) override {
-    if (manifold_) manifolds.push_back(manifold_);
-  }
-
-  struct CreateFunc : btCollisionAlgorithmCreateFunc {
-    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
-                                                   const btCollisionObjectWrapper* a,
-                                                   const btCollisionObjectWrapper* b) override {
-      void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(BoxPlaneAlgorithm));
-      return new (mem) BoxPlaneAlgorithm(ci, a, b, m_swapped);
-    }
-  };
 
  private:
-  btPersistentManifold* manifold_ = nullptr;
-  bool swapped_;
   btVector3 centre_;  // [m], bounding sphere in the box's frame
   btScalar radius_ = 0;
 };
