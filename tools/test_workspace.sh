@@ -40,9 +40,13 @@ record() {  # record NAME RC T0 MESSAGE
 }
 finish() {
   /usr/bin/python3 - "$T/results.tsv" "$JUNIT" <<'PY'
+import re
 import sys
 from xml.sax.saxutils import escape, quoteattr
+# a message as XML 1.0 text: terminal colour codes (roslaunch's errors) and other control characters left out
+clean = lambda m: re.sub(r'[\x00-\x08\x0b\x0c\x0e-\x1f]', '', re.sub(r'\x1b\[[0-9;]*[A-Za-z]', '', m))
 rows = [l.rstrip('\n').split('\t', 3) for l in open(sys.argv[1]) if l.strip()]
+rows = [r[:3] + [clean(r[3]) if len(r) > 3 else ''] for r in rows]
 failed = [r for r in rows if r[1] != '0']
 print('test_workspace: %d passed, %d failed' % (len(rows) - len(failed), len(failed)))
 if sys.argv[2]:
