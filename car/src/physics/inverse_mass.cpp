@@ -207,6 +207,27 @@ void InverseMass::solve(const btScalar* f, btScalar* x) const {
   }
 }
 
+bool InverseMass::contact_jacobian(int link, const btVector3& p, const btVector3& n, btScalar* jac) const {
+  // the base's rotation about its centre of mass moves p with w x (p - c0); its translation with v
+  const btVector3 w = (p - com_[0]).cross(n);
+  for (int a = 0; a < 3; ++a) {
+    jac[a] = w[a];
+    jac[3 + a] = n[a];
+  }
+  for (int i = 6; i < n_; ++i) jac[i] = 0;
+  // a joint of the link or an ancestor j moves p with b_d + a_d x (p - c_j)
+  for (int j = link; j >= 0; j = mb_->getLink(j).m_parent) {
+    const btMultibodyLink& l = mb_->getLink(j);
+    if (l.m_dofCount > 1) return false;
+    const btVector3 r = p - com_[j + 1];
+    for (int d = 0; d < l.m_dofCount; ++d) {
+      const int k = l.m_dofOffset + d;
+      jac[6 + k] = n.dot(bottom_[k] + top_[k].cross(r));
+    }
+  }
+  return true;
+}
+
 bool InverseMass::free_motion_supported(const btMultiBody& mb) {
   for (int i = 0; i < mb.getNumLinks(); ++i) {
     const btMultibodyLink& l = mb.getLink(i);

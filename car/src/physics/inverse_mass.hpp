@@ -26,6 +26,12 @@ class InverseMass {
 
   const btMultiBody* body() const { return mb_; }
 
+  // The Jacobian of a point contact for the last successful build (6 + dofs entries, Bullet's layout): the rate of
+  // n . (velocity of the point p fixed to `link`, -1 the base) per generalised velocity, p [m] and n (unit) in
+  // the world frame. Bullet's fillContactJacobianMultiDof gives the same numbers through each frame from the base
+  // out; false for a joint of several degrees of freedom (use Bullet's).
+  bool contact_jacobian(int link, const btVector3& p, const btVector3& n, btScalar* jac) const;
+
   // Whether free_acceleration gives mb's free accelerations: every joint revolute, prismatic or fixed (one or no
   // degree of freedom) and no joint reporting its forces (Bullet's pass computes those along the way).
   static bool free_motion_supported(const btMultiBody& mb);

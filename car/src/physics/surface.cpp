@@ -847,6 +847,9 @@ const SurfaceSolver::ContactFrames& SurfaceSolver::contact_frames(const btMultiB
 // also multiplies out the frames' rotations from the world, which no entry reads.
 void SurfaceSolver::contact_jacobian(const btMultiBody* mb, int link, const btVector3& point, const btVector3& normal,
                                      btScalar* jac) {
+  // with the factored matrix, from its world frames (the same Jacobian, to rounding)
+  if (const InverseMass* inv = inverse_mass(mb))
+    if (inv->contact_jacobian(link, point, normal, jac)) return;
   const ContactFrames& f = contact_frames(mb);
   const int dofs = mb->getNumDofs();
   const btVector3 normal_ang(0, 0, 0);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <BulletDynamics/Featherstone/btMultiBody.h>
+#include <BulletDynamics/Featherstone/btMultiBodyConstraint.h>
 
 #include <random>
 
@@ -200,4 +201,58 @@ TEST(InverseMass, FreeMotionOfTheSeedCarIsBulletsPass) {
   btMultiBody* mb = r.multibody();
   for (int i = 0; i < mb->getNumLinks(); ++i) mb->setJointVel(i, 3.0 - 1.5 * i);
   EXPECT_LT(free_motion_error(mb), 1e-9);
+}
+
+namespace {
+
+// Largest |InverseMass::contact_jacobian - Bullet's fillContactJacobianMultiDof| over every link of mb (and the
+// base) at seeded points and normals, relative to the largest entry of Bullet's.
+double contact_jacobian_error(btMultiBody* mb) {
+  btAlignedObjectArray<btScalar> r;
+  btAlignedObjectArray<btVector3> v;
+  btAlignedObjectArray<btMatrix3x3> m;
+  mb->computeAccelerationsArticulatedBodyAlgorithmMultiDof(0, r, v, m, false, false, false);
+  physics::InverseMass inv;
+  EXPECT_TRUE(inv.build(*mb));
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int n = 6 + mb->getNumDofs();
+  std::vector<btScalar> bullet(n), ours(n);
+  btMultiBodyJacobianData data;
+  double worst = 0;
+  for (int link = -1; link < mb->getNumLinks(); ++link)
+    for (int trial = 0; trial < 5; ++trial) {
+      const btVector3 p = mb->getBasePos() + btVector3(u(rng), u(rng), u(rng));
+      const btVector3 normal = btVector3(u(rng), u(rng), u(rng)).normalized();
+      mb->fillContactJacobianMultiDof(link, p, normal, bullet.data(), data.scratch_r, data.scratch_v, data.scratch_m);
+      EXPECT_TRUE(inv.contact_jacobian(link, p, normal, ours.data()));
+      double scale = 0, err = 0;
+      for (int i = 0; i < n; ++i) {
+        scale = std::max(scale, std::abs(bullet[i]));
+        err = std::max(err, std::abs(bullet[i] - ours[i]));
+      }
+      worst = std::max(worst, err / scale);
+    }
+  return worst;
+}
+
+}  // namespace
+
+TEST(InverseMass, ContactJacobianOfAFloatingTreeIsBullets) {
+  physics::Physics p(flat(), options(), {});
+  physics::Robot& r = p.add_robot(tree(), "tree", pose(0.3, -0.2, 0.5, 0.7, 0.2), {});
+  r.set_joint_position(r.joint("upper_joint"), 0.6);
+  r.set_joint_position(r.joint("slider_joint"), 0.05);
+  r.set_root_velocity(Eigen::Vector3d(0.3, -0.1, 0.2), Eigen::Vector3d(0.5, 0.2, -0.4));
+  run(p, 50);
+  EXPECT_LT(contact_jacobian_error(r.multibody()), 1e-12);
+}
+
+TEST(InverseMass, ContactJacobianOfAFixedBaseArmIsBullets) {
+  physics::Physics p(flat(), options(), {});
+  physics::Robot& r = p.add_robot(fixed_arm(), "arm", pose(0, 0, 0), {});
+  r.set_joint_position(r.joint("upper_joint"), 0.4);
+  r.set_joint_position(r.joint("fore_joint"), -0.9);
+  run(p, 50);
+  EXPECT_LT(contact_jacobian_error(r.multibody()), 1e-12);
 }
