@@ -140,7 +140,9 @@ bool clearly_apart(const btCollisionObjectWrapper* convex, const btCollisionObje
   // [m] the sphere's lowest point above the plane, along its normal
   const btScalar gap = (tp.getBasis() * ground->getPlaneNormal()).dot(c - tp.getOrigin()) - offset - radius;
   const btScalar limit = manifold->getContactBreakingThreshold() + out->m_closestPointDistanceThreshold;
-  const btScalar slack = 1e-9 * (c.length() + tp.getOrigin().length() + std::abs(offset) + radius) + 1e-9;
+  // (sums of magnitudes bound the lengths: no square roots)
+  const btVector3 ca = c.absolute(), oa = tp.getOrigin().absolute();
+  const btScalar slack = 1e-9 * (ca[0] + ca[1] + ca[2] + oa[0] + oa[1] + oa[2] + std::abs(offset) + radius) + 1e-9;
   return gap > limit + slack;
 }
 

@@ -219,6 +219,7 @@ void SurfaceSolver::convertContacts(btPersistentManifold** manifolds, int count,
   }
   own_ = own_rows(info);
   inverse_used_ = 0;
+  last_body_ = nullptr;
   frames_used_ = 0;
   // Gazebo's default surface (max_vel 0.01 m/s, min_depth 0) on every pair Bullet's conversion sets up: each
   // point's correction capped before its rows are made, the held-back part kept for the split (solve_push)
@@ -817,17 +818,20 @@ bool SurfaceSolver::own_rows(const btContactSolverInfo& info) const {
 
 const InverseMass* SurfaceSolver::inverse_mass(const btMultiBody* mb) {
   if (rows_ != RowSetup::factored) return nullptr;
+  // the multibody of the last call (a row's Jacobian and response ask twice, a manifold's rows in turn)
+  if (mb == last_body_) return last_inverse_;
+  last_body_ = mb;
   if (source_)
-    if (const InverseMass* built = source_->built(mb)) return built;
+    if ((last_inverse_ = source_->built(mb))) return last_inverse_;
   for (int i = 0; i < inverse_used_; ++i)
-    if (inverse_[i].body() == mb) return inverse_ok_[i] ? &inverse_[i] : nullptr;
+    if (inverse_[i].body() == mb) return last_inverse_ = inverse_ok_[i] ? &inverse_[i] : nullptr;
   if (inverse_used_ == static_cast<int>(inverse_.size())) {
     inverse_.emplace_back();
     inverse_ok_.push_back(0);
   }
   const int i = inverse_used_++;
   inverse_ok_[i] = inverse_[i].build(*mb);
-  return inverse_ok_[i] ? &inverse_[i] : nullptr;
+  return last_inverse_ = inverse_ok_[i] ? &inverse_[i] : nullptr;
 }
 
 const SurfaceSolver::ContactFrames& SurfaceSolver::contact_frames(const btMultiBody* mb) {

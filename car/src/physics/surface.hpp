@@ -190,6 +190,8 @@ class SurfaceSolver : public btMultiBodyConstraintSolver {
   bool own_ = false;                 // this solve sets up its contact rows itself
   std::vector<InverseMass> inverse_;  // reused between solves
   int inverse_used_ = 0;
+  const btMultiBody* last_body_ = nullptr;      // inverse_mass's last question this solve, and its answer
+  const InverseMass* last_inverse_ = nullptr;
   std::vector<char> inverse_ok_;
   std::vector<ContactFrames> frames_;  // reused between solves
   int frames_used_ = 0;
