@@ -52,9 +52,12 @@ def _rows(f, g):
     if 'lidar.car_1core_rays_per_s' in f:
         lidar, pb_rays = g('lidar.car_1core_rays_per_s'), g('lidar.pybullet_1thread_rays_per_s')
         depth, pb_cam = g('depth.car_2core_fps'), g('depth.pybullet_tinyrenderer_fps')
+        # issue 32's targets for runs since the strong MuJoCo model (200 cars, 10x through ROS); 100 and 5x before
+        strong = 'physics.mujoco_strong' in f
+        cars, ros = (200, 10) if strong else (100, 5)
         rows += [
             ('seed cars with lidar (5.5 Hz) + diff drive at >= 1x real time, one process',
-             '%d' % g('many.cars_at_1x_real_time'), '>= 100', g('many.cars_at_1x_real_time') >= 100),
+             '%d' % g('many.cars_at_1x_real_time'), '>= %d' % cars, g('many.cars_at_1x_real_time') >= cars),
             ('lidar kernel, rays/s, 1 core',
              '%.1f M; %.2fx PyBullet rayTestBatch (%.1f M)' % (lidar / 1e6, lidar / pb_rays, pb_rays / 1e6),
              '>= 20 M', lidar >= 20e6),
@@ -64,7 +67,8 @@ def _rows(f, g):
             ('full stack in the core (physics, lidar 5.5 Hz, depth 10 Hz) [x real time]',
              '%.1f' % g('full_stack.core_x_real_time'), '>= 10', g('full_stack.core_x_real_time') >= 10),
             ('full stack through ROS, /scan and the 20 Hz cloud subscribed [x real time]',
-             '%.1f' % g('full_stack.ros_cloud_x_real_time'), '>= 5', g('full_stack.ros_cloud_x_real_time') >= 5),
+             '%.1f' % g('full_stack.ros_cloud_x_real_time'), '>= %d' % ros,
+             g('full_stack.ros_cloud_x_real_time') >= ros),
         ]
     return rows
 
@@ -75,10 +79,13 @@ def render(f):
     if n:
         best = _rows(f, lambda k: f[k])
         median = _rows(f, lambda k: f[k + '.median'])
-        out = ['| figure | this run: best of %d | median of %d | target | met (best) |' % (n, n),
-               '|---|---|---|---|---|']
-        for (name, value, target, met), (_, mid, _, _) in zip(best, median):
-            out.append('| %s | %s | %s | %s | %s |' % (name, value, mid, target, 'yes' if met else '**no**'))
+        # issue 32 judges the medians (runs since the strong MuJoCo model); the best before
+        by_median = 'physics.mujoco_strong' in f
+        out = ['| figure | this run: best of %d | median of %d | target | met (%s) |'
+               % (n, n, 'median' if by_median else 'best'), '|---|---|---|---|---|']
+        for (name, value, target, met), (_, mid, _, met_mid) in zip(best, median):
+            ok = met_mid if by_median else met
+            out.append('| %s | %s | %s | %s | %s |' % (name, value, mid, target, 'yes' if ok else '**no**'))
     else:
         out = ['| figure | this run | target | met |', '|---|---|---|---|']
         for name, value, target, met in _rows(f, lambda k: f[k]):
