@@ -73,16 +73,10 @@ struct CompoundAccess : btCompoundCollisionAlgorithm {
   static int revision(const btCompoundCollisionAlgorithm* a) { return a->*(&CompoundAccess::m_compoundShapeRevision); }
 };
 
-// A pair whose narrow phase makes and frees nothing: its algorithm exists and is Bullet's convex-on-plane one
-// (its manifold is made with it), or a compound's whose shape is unchanged and whose every child has a
-// convex-on-plane algorithm (a plane's bounding box covers every child, so Bullet never drops one).
-// An algorithm that writes only the manifold it was made with: Bullet's convex-plane one, or one of car's.
-bool writes_own_manifold(const btCollisionAlgorithm* a) {
-  if (dynamic_cast<const btConvexPlaneCollisionAlgorithm*>(a)) return true;
-  const auto* s = dynamic_cast<const SettledAlgorithm*>(a);
-  return s && s->settled();
-}
-
+// A pair whose narrow phase makes and frees nothing: its algorithm exists and writes only manifolds made before
+// (writes_own_manifold: Bullet's convex-on-plane one, car's plane algorithms), or is Bullet's compound one for a
+// shape that is unchanged and whose every child has such an algorithm (against a plane, whose bounding box covers
+// every child, Bullet never drops one).
 bool settled(const btBroadphasePair& p) {
   if (!p.m_algorithm) return false;
   if (writes_own_manifold(p.m_algorithm)) return true;
@@ -113,6 +107,12 @@ bool positive_zero(const btVector3& v) {
 }
 
 }  // namespace
+
+bool writes_own_manifold(const btCollisionAlgorithm* a) {
+  if (dynamic_cast<const btConvexPlaneCollisionAlgorithm*>(a)) return true;
+  const auto* s = dynamic_cast<const SettledAlgorithm*>(a);
+  return s && s->settled();
+}
 
 IslandDispatcher::IslandDispatcher(btCollisionConfiguration* config)
     : btCollisionDispatcher(config), threads_(parallel_threads()) {}

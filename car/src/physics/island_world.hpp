@@ -27,9 +27,14 @@ namespace physics {
 class SettledAlgorithm : public btActivatingCollisionAlgorithm {
  public:
   using btActivatingCollisionAlgorithm::btActivatingCollisionAlgorithm;
-  // false while its next processCollision may make or free algorithms or manifolds (a compound's changed shape)
+  // false while its next processCollision may make or free algorithms or manifolds (a compound's changed shape, or
+  // a child whose algorithm may)
   virtual bool settled() const { return true; }
 };
+
+// Whether an algorithm's processCollision writes only manifolds made before it (Bullet's convex-plane algorithm, a
+// settled SettledAlgorithm): its pair may collide on any thread.
+bool writes_own_manifold(const btCollisionAlgorithm* a);
 
 // Bullet's dispatcher, with the narrow phase of the pairs that can no longer allocate on the OpenMP threads: a
 // convex shape or a compound of convex shapes on a static plane whose collision algorithms (and so their

@@ -318,13 +318,18 @@ class CompoundPlaneAlgorithm : public SettledAlgorithm {
   }
   ~CompoundPlaneAlgorithm() override { free_children(); }
 
-  bool settled() const override { return compound_->getUpdateRevision() == revision_; }
+  bool settled() const override {
+    if (!unchanged()) return false;
+    for (const btCollisionAlgorithm* child : children_)
+      if (!writes_own_manifold(child)) return false;
+    return true;
+  }
 
   void processCollision(const btCollisionObjectWrapper* a, const btCollisionObjectWrapper* b,
                         const btDispatcherInfo& info, btManifoldResult* out) override {
     const btCollisionObjectWrapper* body = swapped_ ? b : a;
     const btCollisionObjectWrapper* plane = swapped_ ? a : b;
-    if (!settled()) {
+    if (!unchanged()) {
       free_children();
       make_children(a, b);
     }
@@ -382,6 +387,8 @@ class CompoundPlaneAlgorithm : public SettledAlgorithm {
   };
 
  private:
+  // the shape as its children's algorithms were made for it
+  bool unchanged() const { return compound_->getUpdateRevision() == revision_; }
   void make_children(const btCollisionObjectWrapper* a, const btCollisionObjectWrapper* b) {
     const btCollisionObjectWrapper* body = swapped_ ? b : a;
     const btCollisionObjectWrapper* plane = swapped_ ? a : b;
