@@ -1,8 +1,9 @@
-// The joint-space mass matrix of a Bullet multibody, factored once per step, for the contact rows' unit-impulse
-// responses (private to the core; docs/COMPAT-physics.md "Row set-up"). Bullet computes each row's response
-// M^-1 J^T with a pass of Featherstone's algorithm over the whole tree (btMultiBody::calcAccelerationDeltasMultiDof,
-// two thirds of a car's row set-up); here M is built once from the same cached frames Bullet's pass uses, factored
-// (Cholesky), and each row costs two triangular solves.
+// The joint-space mass matrix of a Bullet multibody, factored once per step, for the free motion, the contact rows'
+// Jacobians and their unit-impulse responses (private to the core; docs/COMPAT-physics.md "Row set-up", "Free
+// motion"). Bullet computes each row's response M^-1 J^T with a pass of Featherstone's algorithm over the whole tree
+// (btMultiBody::calcAccelerationDeltasMultiDof, two thirds of a car's row set-up) and the free accelerations with
+// three more; here M is built once from the same cached frames Bullet's passes use, factored (Cholesky), and each
+// row costs two triangular solves.
 #pragma once
 
 #include <BulletDynamics/Featherstone/btMultiBody.h>
@@ -15,9 +16,9 @@ namespace physics {
 class InverseMass {
  public:
   // M of mb's present configuration, in Bullet's generalised velocities (base angular and linear velocity of the
-  // base's centre of mass, world frame, then the joint rates), from the frames Bullet's free-motion pass cached
-  // (m_cachedRotParentToThis, m_cachedRVector, the joint axes). false (use Bullet's pass) for a kinematic base or
-  // link, or a matrix that is not positive definite.
+  // base's centre of mass, world frame, then the joint rates), from the frames Bullet caches with each link's joint
+  // position (m_cachedRotParentToThis, m_cachedRVector, the joint axes). false (use Bullet's pass) for a kinematic
+  // base or link, or a matrix that is not positive definite.
   bool build(const btMultiBody& mb);
 
   // x = M^-1 f for 6 + dofs entries (Bullet's layout: base torque [N m] and force [N], world frame, then the joint

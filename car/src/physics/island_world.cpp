@@ -257,10 +257,6 @@ void IslandWorld::for_each_multibody(F&& f) {
   }
 }
 
-// A multibody's share of btMultiBodyDynamicsWorld::solveExternalForces: forward kinematics, constraint forces
-// cleared and, if it was awake before the islands were built, its free accelerations (Featherstone's
-// articulated-body algorithm; gravity was added in applyGravity and the forces are cleared in clearForces, as
-// Bullet 3.24 builds with BT_USE_VIRTUAL_CLEARFORCES_AND_GRAVITY).
 // Which multibodies take their free motion from their factored mass matrix this step (docs/COMPAT-physics.md "Free
 // motion"): all, when the solvers set up every row with factored matrices, except a multibody that a constraint of
 // Bullet's rows touches (a joint limit: its rows read the caches of Bullet's free-motion pass), one with joint
@@ -268,8 +264,9 @@ void IslandWorld::for_each_multibody(F&& f) {
 void IslandWorld::mark_factored(const btContactSolverInfo& info) {
   const int nmb = m_multiBodies.size();
   free_.resize(nmb);
-  factored_.assign(nmb, solvers_[0]->factored_free_motion(info) ? 1 : 0);
-  if (!nmb || !factored_[0]) return;
+  const bool factored = solvers_[0]->factored_free_motion(info);
+  factored_.assign(nmb, factored ? 1 : 0);
+  if (!factored) return;
   for (int i = 0; i < nmb; ++i)
     if (m_multiBodies[i]->getUserIndex() != i) m_multiBodies[i]->setUserIndex(i);
   for (int i = 0; i < m_multiBodyConstraints.size(); ++i) {
@@ -293,6 +290,11 @@ const InverseMass* IslandWorld::built(const btMultiBody* mb) const {
   return f.stamp == stamp_ && f.ok ? &f.inverse : nullptr;
 }
 
+// A multibody's share of btMultiBodyDynamicsWorld::solveExternalForces: forward kinematics, constraint forces
+// cleared and, if it was awake before the islands were built, its free accelerations added to its velocities: from
+// its factored mass matrix (mark_factored), else Featherstone's articulated-body algorithm, Bullet's pass (gravity was
+// added in applyGravity and the forces are cleared in clearForces, as Bullet 3.24 builds with
+// BT_USE_VIRTUAL_CLEARFORCES_AND_GRAVITY).
 void IslandWorld::free_motion(int body, Scratch& s, const btContactSolverInfo& info) {
   btMultiBody* b = m_multiBodies[body];
   b->forwardKinematics(s.world_to_local, s.local_origin);
