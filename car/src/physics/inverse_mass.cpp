@@ -36,6 +36,18 @@ inline bool cholesky(double* l, double* inv, int m) {
 
 }  // namespace
 
+template <class F>
+void InverseMass::for_each_dof_above(int link, const btVector3& p, F&& f) const {
+  for (int j = link; j >= 0; j = mb_->getLink(j).m_parent) {
+    const btMultibodyLink& l = mb_->getLink(j);
+    const btVector3 r = p - com_[j + 1];
+    for (int d = 0; d < l.m_dofCount; ++d) {
+      const int k = l.m_dofOffset + d;
+      f(k, top_[k], bottom_[k] + top_[k].cross(r));
+    }
+  }
+}
+
 bool InverseMass::build(const btMultiBody& mb) {
   mb_ = &mb;
   const int links = mb.getNumLinks();
@@ -76,8 +88,10 @@ bool InverseMass::build(const btMultiBody& mb) {
   iw_.resize(bodies);
   top_.resize(n_ - 6);
   bottom_.resize(n_ - 6);
+  one_dof_joints_ = true;
   for (int i = 0; i < links; ++i) {
     const btMultibodyLink& l = mb.getLink(i);
+    if (l.m_dofCount > 1) one_dof_joints_ = false;
     for (int d = 0; d < l.m_dofCount; ++d) {
       top_[l.m_dofOffset + d] = rot_[i + 1] * l.m_axes[d].m_topVec;
       bottom_[l.m_dofOffset + d] = rot_[i + 1] * l.m_axes[d].m_bottomVec;
@@ -102,18 +116,12 @@ bool InverseMass::build(const btMultiBody& mb) {
     // the joints from the body up to the base: a unit rate of dof d of link j turns the body with a_d about link
     // j's centre of mass and moves that point with b_d (Bullet's spatial axis, frame j); columns in decreasing order
     int k = 0;
-    for (int j = b - 1; j >= 0; j = mb.getLink(j).m_parent) {
-      const btMultibodyLink& l = mb.getLink(j);
-      const btVector3 r = com_[b] - com_[j + 1];
-      for (int d = 0; d < l.m_dofCount; ++d) {
-        const btVector3& a = top_[l.m_dofOffset + d];
-        const btVector3& v = bottom_[l.m_dofOffset + d];
-        cols_[k] = 6 + l.m_dofOffset + d;
-        w_[k] = a;
-        u_[k] = v + a.cross(r);
-        ++k;
-      }
-    }
+    for_each_dof_above(b - 1, com_[b], [&](int dof, const btVector3& a, const btVector3& u) {
+      cols_[k] = 6 + dof;
+      w_[k] = a;
+      u_[k] = u;
+      ++k;
+    });
     const btVector3 r = com_[b] - com_[0];
     for (int p = 0; p < k; ++p) {
       const btVector3 iwp = iw * w_[p];
@@ -208,6 +216,7 @@ void InverseMass::solve(const btScalar* f, btScalar* x) const {
 }
 
 bool InverseMass::contact_jacobian(int link, const btVector3& p, const btVector3& n, btScalar* jac) const {
+  if (!one_dof_joints_) return false;
   // the base's rotation about its centre of mass moves p with w x (p - c0); its translation with v
   const btVector3 w = (p - com_[0]).cross(n);
   for (int a = 0; a < 3; ++a) {
@@ -215,16 +224,8 @@ bool InverseMass::contact_jacobian(int link, const btVector3& p, const btVector3
     jac[3 + a] = n[a];
   }
   for (int i = 6; i < n_; ++i) jac[i] = 0;
-  // a joint of the link or an ancestor j moves p with b_d + a_d x (p - c_j)
-  for (int j = link; j >= 0; j = mb_->getLink(j).m_parent) {
-    const btMultibodyLink& l = mb_->getLink(j);
-    if (l.m_dofCount > 1) return false;
-    const btVector3 r = p - com_[j + 1];
-    for (int d = 0; d < l.m_dofCount; ++d) {
-      const int k = l.m_dofOffset + d;
-      jac[6 + k] = n.dot(bottom_[k] + top_[k].cross(r));
-    }
-  }
+  // a joint of the link or an ancestor moves p with u
+  for_each_dof_above(link, p, [&](int k, const btVector3&, const btVector3& u) { jac[6 + k] = n.dot(u); });
   return true;
 }
 
@@ -293,15 +294,9 @@ void InverseMass::free_acceleration(const btMultiBody& mb, btScalar* qdd) {
     if (gyro) n += w.cross(iww);
     if (k_lin != 0) f += mass * vel_[b] * (k_lin + k_lin * vel_[b].safeNorm());
     if (k_ang != 0) n += iww * (k_ang + k_ang * w.safeNorm());
-    for (int j = b - 1; j >= 0; j = mb.getLink(j).m_parent) {
-      const btMultibodyLink& l = mb.getLink(j);
-      const btVector3 r = com_[b] - com_[j + 1];
-      for (int d = 0; d < l.m_dofCount; ++d) {
-        const btVector3& a = top_[l.m_dofOffset + d];
-        const btVector3 u = bottom_[l.m_dofOffset + d] + a.cross(r);
-        force_[6 + l.m_dofOffset + d] -= u.dot(f) + a.dot(n);
-      }
-    }
+    for_each_dof_above(b - 1, com_[b], [&](int k, const btVector3& a, const btVector3& u) {
+      force_[6 + k] -= u.dot(f) + a.dot(n);
+    });
     if (!fixed) {
       // the base's rotation about its centre of mass and its translation
       const btVector3 t = n + (com_[b] - com_[0]).cross(f);

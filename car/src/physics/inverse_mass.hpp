@@ -30,7 +30,7 @@ class InverseMass {
   // The Jacobian of a point contact for the last successful build (6 + dofs entries, Bullet's layout): the rate of
   // n . (velocity of the point p fixed to `link`, -1 the base) per generalised velocity, p [m] and n (unit) in
   // the world frame. Bullet's fillContactJacobianMultiDof gives the same numbers through each frame from the base
-  // out; false for a joint of several degrees of freedom (use Bullet's).
+  // out; false for a multibody with a joint of several degrees of freedom (use Bullet's).
   bool contact_jacobian(int link, const btVector3& p, const btVector3& n, btScalar* jac) const;
 
   // Whether free_acceleration gives mb's free accelerations: every joint revolute, prismatic or fixed (one or no
@@ -62,6 +62,12 @@ class InverseMass {
   // part) in the world frame
   std::vector<btMatrix3x3> iw_;
   std::vector<btVector3> top_, bottom_;
+  bool one_dof_joints_ = true;  // no joint of several degrees of freedom (contact_jacobian's rule)
+
+  // f(k, a, u) for each degree of freedom k of `link` and its ancestors: a unit rate of k turns a point p fixed to
+  // `link` with a (world) and moves it with u = b_k + a x (p - c_j), c_j the centre of mass of k's link
+  template <class F>
+  void for_each_dof_above(int link, const btVector3& p, F&& f) const;
   // free_acceleration's per body: angular velocity [rad/s] and centre-of-mass velocity [m/s], their rates with no
   // joint acceleration [rad/s^2], [m/s^2], world frame; and the generalised force [N m | N]
   std::vector<btVector3> omega_, vel_, alpha_, acc_;
