@@ -1,9 +1,7 @@
 #include "island_world.hpp"
 
-#include <BulletCollision/CollisionDispatch/btCompoundCollisionAlgorithm.h>
 #include <BulletCollision/CollisionDispatch/btConvexPlaneCollisionAlgorithm.h>
 #include <BulletCollision/CollisionDispatch/btSimulationIslandManager.h>
-#include <BulletCollision/CollisionShapes/btCompoundShape.h>
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyConstraint.h>
 #include <BulletDynamics/Featherstone/btMultiBodyInplaceSolverIslandCallback.h>
@@ -68,30 +66,10 @@ int island_tag(const btMultiBody* b) {
 // [-] settled pairs from which the narrow phase runs on several threads (a car on the ground has about eight)
 constexpr int kParallelPairs = 32;
 
-// Bullet's compound algorithm's record of the shape revision its child algorithms were made for (protected).
-struct CompoundAccess : btCompoundCollisionAlgorithm {
-  static int revision(const btCompoundCollisionAlgorithm* a) { return a->*(&CompoundAccess::m_compoundShapeRevision); }
-};
-
 // A pair whose narrow phase makes and frees nothing: its algorithm exists and writes only manifolds made before
-// (writes_own_manifold: Bullet's convex-on-plane one, car's plane algorithms), or is Bullet's compound one for a
-// shape that is unchanged and whose every child has such an algorithm (against a plane, whose bounding box covers
-// every child, Bullet never drops one).
-bool settled(const btBroadphasePair& p) {
-  if (!p.m_algorithm) return false;
-  if (writes_own_manifold(p.m_algorithm)) return true;
-  const auto* c = dynamic_cast<const btCompoundCollisionAlgorithm*>(p.m_algorithm);
-  if (!c) return false;
-  const auto* o0 = static_cast<const btCollisionObject*>(p.m_pProxy0->m_clientObject);
-  const auto* o1 = static_cast<const btCollisionObject*>(p.m_pProxy1->m_clientObject);
-  const btCollisionShape* s = o0->getCollisionShape()->isCompound() ? o0->getCollisionShape() : o1->getCollisionShape();
-  if (!s->isCompound()) return false;
-  const auto* compound = static_cast<const btCompoundShape*>(s);
-  if (CompoundAccess::revision(c) != compound->getUpdateRevision()) return false;
-  for (int i = 0; i < compound->getNumChildShapes(); ++i)
-    if (!writes_own_manifold(c->getChildAlgorithm(i))) return false;
-  return true;
-}
+// (writes_own_manifold: Bullet's convex-on-plane one, car's plane algorithms, a compound's against a plane among
+// them while its shape is unchanged).
+bool settled(const btBroadphasePair& p) { return p.m_algorithm && writes_own_manifold(p.m_algorithm); }
 
 // The same bits in the nine entries of the basis and the three of the origin (not the padding).
 bool same(const btTransform& a, const btTransform& b) {

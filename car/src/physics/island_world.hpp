@@ -38,7 +38,8 @@ bool writes_own_manifold(const btCollisionAlgorithm* a);
 
 // Bullet's dispatcher, with the narrow phase of the pairs that can no longer allocate on the OpenMP threads: a
 // convex shape or a compound of convex shapes on a static plane whose collision algorithms (and so their
-// manifolds) exist, Bullet's convex-plane algorithm or a SettledAlgorithm. Every other pair is processed first, on the calling thread, in Bullet's order, so manifolds are
+// manifolds) exist, Bullet's convex-plane algorithm or a SettledAlgorithm (car's configuration gives every shape
+// on a plane one of those). Every other pair is processed first, on the calling thread, in Bullet's order, so manifolds are
 // made and freed in Bullet's order; each pair writes only its own manifolds, so the contacts are Bullet's bit for
 // bit on any number of threads.
 class IslandDispatcher : public btCollisionDispatcher {
