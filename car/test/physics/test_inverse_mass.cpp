@@ -1,7 +1,8 @@
 // The factored mass matrix (src/physics/inverse_mass.hpp) against Bullet's own Featherstone pass: for robots of
 // every joint layout car builds (floating base with wheels, a fixed base with a chain of revolute and prismatic
 // joints, a tree), posed away from their zero configuration and moving, M^-1 f equals
-// btMultiBody::calcAccelerationDeltasMultiDof(f) for random f to 1e-9 of its size.
+// btMultiBody::calcAccelerationDeltasMultiDof(f) for random f to 1e-9 of its size; the free accelerations equal
+// Bullet's articulated-body pass, the contact Jacobians its fillContactJacobianMultiDof.
 #include <gtest/gtest.h>
 
 #include <BulletDynamics/Featherstone/btMultiBody.h>
@@ -57,6 +58,44 @@ RobotModel fixed_arm() {
                           "arm.urdf");
 }
 
+// The tree falling and turning with its arm bent (frames away from identity).
+btMultiBody* moving_tree(physics::Physics& p) {
+  physics::Robot& r = p.add_robot(tree(), "tree", pose(0.3, -0.2, 0.5, 0.7, 0.2), {});
+  r.set_joint_position(r.joint("upper_joint"), 0.6);
+  r.set_joint_position(r.joint("slider_joint"), 0.05);
+  r.set_root_velocity(Eigen::Vector3d(0.3, -0.1, 0.2), Eigen::Vector3d(0.5, 0.2, -0.4));
+  run(p, 50);
+  return r.multibody();
+}
+
+// The fixed arm swinging under gravity from a bent pose.
+btMultiBody* swinging_arm(physics::Physics& p) {
+  physics::Robot& r = p.add_robot(fixed_arm(), "arm", pose(0, 0, 0), {});
+  r.set_joint_position(r.joint("upper_joint"), 0.4);
+  r.set_joint_position(r.joint("fore_joint"), -0.9);
+  run(p, 50);
+  return r.multibody();
+}
+
+// The seed car sliding and turning on the ground.
+btMultiBody* moving_car(physics::Physics& p) {
+  physics::Robot& r = p.add_robot(load_urdf_file(std::string(CAR_SOURCE_DIR) + "/test/data/car_camera_lidar04.urdf"),
+                                  "car", pose(0, 0, 0.05, 0.4), {});
+  r.set_root_velocity(Eigen::Vector3d(0.2, 0.1, 0), Eigen::Vector3d(0, 0, 1.0));
+  run(p, 200);
+  return r.multibody();
+}
+
+// Largest |bullet - ours| over n entries, relative to the largest |bullet|.
+double relative_error(const btScalar* bullet, const btScalar* ours, int n) {
+  double scale = 0, err = 0;
+  for (int i = 0; i < n; ++i) {
+    scale = std::max(scale, std::abs(bullet[i]));
+    err = std::max(err, std::abs(bullet[i] - ours[i]));
+  }
+  return err / scale;
+}
+
 // Largest |M^-1 f - Bullet's f response| over random f, relative to the largest entry of Bullet's response.
 double worst_error(btMultiBody* mb) {
   btAlignedObjectArray<btScalar> r;
@@ -75,12 +114,7 @@ double worst_error(btMultiBody* mb) {
     for (auto& x : f) x = u(rng);
     mb->calcAccelerationDeltasMultiDof(f.data(), bullet.data(), r, v);
     inv.solve(f.data(), ours.data());
-    double scale = 0, err = 0;
-    for (int i = 0; i < n; ++i) {
-      scale = std::max(scale, std::abs(bullet[i]));
-      err = std::max(err, std::abs(bullet[i] - ours[i]));
-    }
-    worst = std::max(worst, err / scale);
+    worst = std::max(worst, relative_error(bullet.data(), ours.data(), n));
   }
   return worst;
 }
@@ -89,32 +123,19 @@ double worst_error(btMultiBody* mb) {
 
 TEST(InverseMass, FloatingTreeMatchesBulletsPass) {
   physics::Physics p(flat(), options(), {});
-  physics::Robot& r = p.add_robot(tree(), "tree", pose(0.3, -0.2, 0.5, 0.7, 0.2), {});
-  r.set_joint_position(r.joint("upper_joint"), 0.6);
-  r.set_joint_position(r.joint("slider_joint"), 0.05);
-  r.set_root_velocity(Eigen::Vector3d(0.3, -0.1, 0.2), Eigen::Vector3d(0.5, 0.2, -0.4));
-  run(p, 50);  // falling and turning: frames away from identity
-  EXPECT_LT(worst_error(r.multibody()), 1e-9);
+  EXPECT_LT(worst_error(moving_tree(p)), 1e-9);
 }
 
 TEST(InverseMass, FixedBaseArmMatchesBulletsPass) {
   physics::Physics p(flat(), options(), {});
-  physics::Robot& r = p.add_robot(fixed_arm(), "arm", pose(0, 0, 0), {});
-  r.set_joint_position(r.joint("upper_joint"), 0.4);
-  r.set_joint_position(r.joint("fore_joint"), -0.9);
-  run(p, 50);  // swinging under gravity
-  btMultiBody* mb = r.multibody();
+  btMultiBody* mb = swinging_arm(p);
   ASSERT_TRUE(mb->isBaseStaticOrKinematic());
   EXPECT_LT(worst_error(mb), 1e-9);
 }
 
 TEST(InverseMass, SeedCarMatchesBulletsPass) {
   physics::Physics p(flat(), options(), {});
-  physics::Robot& r = p.add_robot(load_urdf_file(std::string(CAR_SOURCE_DIR) + "/test/data/car_camera_lidar04.urdf"),
-                                  "car", pose(0, 0, 0.05, 0.4), {});
-  r.set_root_velocity(Eigen::Vector3d(0.2, 0.1, 0), Eigen::Vector3d(0, 0, 1.0));
-  run(p, 200);
-  EXPECT_LT(worst_error(r.multibody()), 1e-9);
+  EXPECT_LT(worst_error(moving_car(p)), 1e-9);
 }
 
 namespace {
@@ -143,26 +164,15 @@ double free_motion_error(btMultiBody* mb) {
   EXPECT_TRUE(physics::InverseMass::free_motion_supported(*mb));
   EXPECT_TRUE(inv.build(*mb));
   inv.free_acceleration(*mb, ours.data());
-  double scale = 0, err = 0;
-  for (int i = 0; i < n; ++i) {
-    const double bullet = r[mb->getNumDofs() + i];
-    scale = std::max(scale, std::abs(bullet));
-    err = std::max(err, std::abs(bullet - ours[i]));
-  }
   mb->clearForcesAndTorques();
-  return err / scale;
+  return relative_error(&r[mb->getNumDofs()], ours.data(), n);
 }
 
 }  // namespace
 
 TEST(InverseMass, FreeMotionOfAFloatingTreeIsBulletsPass) {
   physics::Physics p(flat(), options(), {});
-  physics::Robot& r = p.add_robot(tree(), "tree", pose(0.3, -0.2, 0.5, 0.7, 0.2), {});
-  r.set_joint_position(r.joint("upper_joint"), 0.6);
-  r.set_joint_position(r.joint("slider_joint"), 0.05);
-  r.set_root_velocity(Eigen::Vector3d(0.3, -0.1, 0.2), Eigen::Vector3d(0.5, 0.2, -0.4));
-  run(p, 50);
-  btMultiBody* mb = r.multibody();
+  btMultiBody* mb = moving_tree(p);
   // the joints moving too: every velocity-product term of the tree counts
   for (int i = 0; i < mb->getNumLinks(); ++i) mb->setJointVel(i, 0.7 - 0.45 * i);
   EXPECT_LT(free_motion_error(mb), 1e-9);
@@ -170,11 +180,7 @@ TEST(InverseMass, FreeMotionOfAFloatingTreeIsBulletsPass) {
 
 TEST(InverseMass, FreeMotionOfAFixedBaseArmIsBulletsPass) {
   physics::Physics p(flat(), options(), {});
-  physics::Robot& r = p.add_robot(fixed_arm(), "arm", pose(0, 0, 0), {});
-  r.set_joint_position(r.joint("upper_joint"), 0.4);
-  r.set_joint_position(r.joint("fore_joint"), -0.9);
-  run(p, 50);
-  btMultiBody* mb = r.multibody();
+  btMultiBody* mb = swinging_arm(p);
   for (int i = 0; i < mb->getNumLinks(); ++i) mb->setJointVel(i, 1.1 - 0.6 * i);
   EXPECT_LT(free_motion_error(mb), 1e-9);
 }
@@ -194,11 +200,7 @@ TEST(InverseMass, FreeMotionWithDampingAndNoGyroscopicTermIsBulletsPass) {
 
 TEST(InverseMass, FreeMotionOfTheSeedCarIsBulletsPass) {
   physics::Physics p(flat(), options(), {});
-  physics::Robot& r = p.add_robot(load_urdf_file(std::string(CAR_SOURCE_DIR) + "/test/data/car_camera_lidar04.urdf"),
-                                  "car", pose(0, 0, 0.05, 0.4), {});
-  r.set_root_velocity(Eigen::Vector3d(0.2, 0.1, 0), Eigen::Vector3d(0, 0, 1.0));
-  run(p, 200);
-  btMultiBody* mb = r.multibody();
+  btMultiBody* mb = moving_car(p);
   for (int i = 0; i < mb->getNumLinks(); ++i) mb->setJointVel(i, 3.0 - 1.5 * i);
   EXPECT_LT(free_motion_error(mb), 1e-9);
 }
@@ -226,12 +228,7 @@ double contact_jacobian_error(btMultiBody* mb) {
       const btVector3 normal = btVector3(u(rng), u(rng), u(rng)).normalized();
       mb->fillContactJacobianMultiDof(link, p, normal, bullet.data(), data.scratch_r, data.scratch_v, data.scratch_m);
       EXPECT_TRUE(inv.contact_jacobian(link, p, normal, ours.data()));
-      double scale = 0, err = 0;
-      for (int i = 0; i < n; ++i) {
-        scale = std::max(scale, std::abs(bullet[i]));
-        err = std::max(err, std::abs(bullet[i] - ours[i]));
-      }
-      worst = std::max(worst, err / scale);
+      worst = std::max(worst, relative_error(bullet.data(), ours.data(), n));
     }
   return worst;
 }
@@ -240,19 +237,10 @@ double contact_jacobian_error(btMultiBody* mb) {
 
 TEST(InverseMass, ContactJacobianOfAFloatingTreeIsBullets) {
   physics::Physics p(flat(), options(), {});
-  physics::Robot& r = p.add_robot(tree(), "tree", pose(0.3, -0.2, 0.5, 0.7, 0.2), {});
-  r.set_joint_position(r.joint("upper_joint"), 0.6);
-  r.set_joint_position(r.joint("slider_joint"), 0.05);
-  r.set_root_velocity(Eigen::Vector3d(0.3, -0.1, 0.2), Eigen::Vector3d(0.5, 0.2, -0.4));
-  run(p, 50);
-  EXPECT_LT(contact_jacobian_error(r.multibody()), 1e-12);
+  EXPECT_LT(contact_jacobian_error(moving_tree(p)), 1e-12);
 }
 
 TEST(InverseMass, ContactJacobianOfAFixedBaseArmIsBullets) {
   physics::Physics p(flat(), options(), {});
-  physics::Robot& r = p.add_robot(fixed_arm(), "arm", pose(0, 0, 0), {});
-  r.set_joint_position(r.joint("upper_joint"), 0.4);
-  r.set_joint_position(r.joint("fore_joint"), -0.9);
-  run(p, 50);
-  EXPECT_LT(contact_jacobian_error(r.multibody()), 1e-12);
+  EXPECT_LT(contact_jacobian_error(swinging_arm(p)), 1e-12);
 }
