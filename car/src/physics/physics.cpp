@@ -188,6 +188,17 @@ class ConvexPlaneAlgorithm : public btConvexPlaneCollisionAlgorithm {
   btScalar radius_ = 0;
 };
 
+// Bullet's create function for one of car's algorithms A(ci, a, b, swapped).
+template <class A>
+struct CreateFuncOf : btCollisionAlgorithmCreateFunc {
+  btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
+                                                 const btCollisionObjectWrapper* a,
+                                                 const btCollisionObjectWrapper* b) override {
+    void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(A));
+    return new (mem) A(ci, a, b, m_swapped);
+  }
+};
+
 // One of car's algorithms for a shape against a plane: it owns one manifold, made with it (when the pair may
 // collide), so the dispatcher counts its pair as settled; no time of impact (a plane sweeps nothing).
 template <class Derived>
@@ -211,14 +222,7 @@ class PlaneManifoldAlgorithm : public SettledAlgorithm {
     if (manifold_) manifolds.push_back(manifold_);
   }
 
-  struct CreateFunc : btCollisionAlgorithmCreateFunc {
-    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
-                                                   const btCollisionObjectWrapper* a,
-                                                   const btCollisionObjectWrapper* b) override {
-      void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(Derived));
-      return new (mem) Derived(ci, a, b, m_swapped);
-    }
-  };
+  using CreateFunc = CreateFuncOf<Derived>;
 
  protected:
   btPersistentManifold* manifold_ = nullptr;
@@ -377,14 +381,7 @@ class CompoundPlaneAlgorithm : public SettledAlgorithm {
     for (btCollisionAlgorithm* child : children_) child->getAllContactManifolds(manifolds);
   }
 
-  struct CreateFunc : btCollisionAlgorithmCreateFunc {
-    btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
-                                                   const btCollisionObjectWrapper* a,
-                                                   const btCollisionObjectWrapper* b) override {
-      void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(CompoundPlaneAlgorithm));
-      return new (mem) CompoundPlaneAlgorithm(ci, a, b, m_swapped);
-    }
-  };
+  using CreateFunc = CreateFuncOf<CompoundPlaneAlgorithm>;
 
  private:
   // the shape as its children's algorithms were made for it
