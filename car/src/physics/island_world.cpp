@@ -42,6 +42,56 @@ int island_of(const btTypedConstraint* c) {
 }
 int island_of(const btMultiBodyConstraint* c) { return c->getIslandIdA() >= 0 ? c->getIslandIdA() : c->getIslandIdB(); }
 
+// The island of a manifold (Bullet's getIslandId: its first body's, if that has one).
+int island_of(const btPersistentManifold* m) {
+  const int a = m->getBody0()->getIslandTag();
+  return a >= 0 ? a : m->getBody1()->getIslandTag();
+}
+
+// Bullet's btAlignedObjectArray::quickSortInternal on (island, item) pairs: the same partitions, so items of one
+// island end in the same order as Bullet's sort leaves them (the sort is not stable, and that order is the order
+// of the solver's rows); the islands are found once, not twice per comparison through calls.
+template <class T>
+void quicksort_keyed(std::vector<std::pair<int, T>>& a, int lo, int hi) {
+  int i = lo, j = hi;
+  const int x = a[(lo + hi) / 2].first;
+  do {
+    while (a[i].first < x) i++;
+    while (x < a[j].first) j--;
+    if (i <= j) {
+      std::swap(a[i], a[j]);
+      i++;
+      j--;
+    }
+  } while (i <= j);
+  if (lo < j) quicksort_keyed(a, lo, j);
+  if (i < hi) quicksort_keyed(a, i, hi);
+}
+
+// Sorts arrays by island as Bullet's quickSort with its island predicate does (btSortConstraintOnIslandPredicate2,
+// btSortMultiBodyConstraintOnIslandPredicate, btPersistentManifoldSortPredicate). The order is a function of the
+// input alone, so an input equal to the last one (robots driving on without new contacts: the same manifolds and
+// islands, step after step) takes the last order without sorting.
+template <class T>
+class IslandSort {
+ public:
+  void sort(btAlignedObjectArray<T*>& array) {
+    const int n = array.size();
+    if (n < 2) return;
+    keyed_.resize(n);
+    for (int i = 0; i < n; ++i) keyed_[i] = {island_of(array[i]), array[i]};
+    if (keyed_ != last_in_) {
+      last_in_ = keyed_;
+      quicksort_keyed(keyed_, 0, n - 1);
+      last_out_.swap(keyed_);
+    }
+    for (int i = 0; i < n; ++i) array[i] = last_out_[i].second;
+  }
+
+ private:
+  std::vector<std::pair<int, T*>> keyed_, last_in_, last_out_;
+};
+
 // [first, count) of the entries of `island` in an array sorted by island (Bullet sorts both constraint arrays so).
 template <class T>
 void range_of(const btAlignedObjectArray<T*>& sorted, int island, int& first, int& count) {
@@ -149,6 +199,11 @@ void IslandDispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairs, 
 
 // Bullet's island manager calls this once per awake island, in increasing island order; it copies the island's
 // bodies and manifolds (Bullet's arrays are reused for the next island) and finds its constraints.
+struct IslandWorld::ConstraintSort {
+  IslandSort<btTypedConstraint> rigid;
+  IslandSort<btMultiBodyConstraint> multibody;
+};
+
 struct IslandWorld::Collector : btSimulationIslandManager::IslandCallback {
   IslandWorld* w = nullptr;
   void processIsland(btCollisionObject** bodies, int num_bodies, btPersistentManifold** manifolds, int num_manifolds,
@@ -203,11 +258,90 @@ class ContactIslands : public btSimulationIslandManager {
         getUnionFind().unite(a->getIslandTag(), b->getIslandTag());
     }
   }
+
+  // Bullet's buildAndProcessIslands (3.24: buildIslands, then processIslands), with the island manifolds sorted
+  // by IslandSort: the same sleeping states, islands, manifolds and order. Bullet's sort called a function
+  // twice per comparison; with many robots it was the largest part of the step's serial share.
+  void build_and_process(btDispatcher* dispatcher, btCollisionWorld* world, IslandCallback* callback) {
+    if (!getSplitIslands() || world->getDispatchInfo().m_deterministicOverlappingPairs) {
+      buildAndProcessIslands(dispatcher, world, callback);
+      return;
+    }
+    btCollisionObjectArray& objects = world->getCollisionObjectArray();
+    btUnionFind& uf = getUnionFind();
+    uf.sortIslands();
+    const int num = uf.getNumElements();
+    // an island all of whose tagged objects are neither active nor kept awake sleeps; a sleeping object of an
+    // awake island wants deactivation from now
+    for (int start = 0, end = 0; start < num; start = end) {
+      const int id = uf.getElement(start).m_id;
+      for (end = start + 1; end < num && uf.getElement(end).m_id == id; ++end) {
+      }
+      bool all_sleeping = true;
+      for (int k = start; k < end && all_sleeping; ++k) {
+        const btCollisionObject* o = objects[uf.getElement(k).m_sz];
+        if (o->getIslandTag() == id &&
+            (o->getActivationState() == ACTIVE_TAG || o->getActivationState() == DISABLE_DEACTIVATION))
+          all_sleeping = false;
+      }
+      for (int k = start; k < end; ++k) {
+        btCollisionObject* o = objects[uf.getElement(k).m_sz];
+        if (o->getIslandTag() != id) continue;
+        if (all_sleeping) {
+          o->setActivationState(ISLAND_SLEEPING);
+        } else if (o->getActivationState() == ISLAND_SLEEPING) {
+          o->setActivationState(WANTS_DEACTIVATION);
+          o->setDeactivationTime(0.f);
+        }
+      }
+    }
+    // the manifolds with an awake body; a kinematic body wakes what it touches
+    manifolds_.resize(0);
+    for (int i = 0; i < dispatcher->getNumManifolds(); ++i) {
+      btPersistentManifold* m = dispatcher->getManifoldByIndexInternal(i);
+      const btCollisionObject* a = m->getBody0();
+      const btCollisionObject* b = m->getBody1();
+      if (!((a && a->getActivationState() != ISLAND_SLEEPING) || (b && b->getActivationState() != ISLAND_SLEEPING)))
+        continue;
+      if (a->isKinematicObject() && a->getActivationState() != ISLAND_SLEEPING && a->hasContactResponse())
+        b->activate();
+      if (b->isKinematicObject() && b->getActivationState() != ISLAND_SLEEPING && b->hasContactResponse())
+        a->activate();
+      if (dispatcher->needsResponse(a, b)) manifolds_.push_back(m);
+    }
+    sort_.sort(manifolds_);
+    // each island with its bodies and manifolds, unless all its bodies sleep
+    const int num_manifolds = manifolds_.size();
+    int first_manifold = 0;
+    for (int start = 0, end = 0; start < num; start = end) {
+      const int id = uf.getElement(start).m_id;
+      bool sleeping = true;
+      bodies_.resize(0);
+      for (end = start; end < num && uf.getElement(end).m_id == id; ++end) {
+        btCollisionObject* o = objects[uf.getElement(end).m_sz];
+        bodies_.push_back(o);
+        if (o->isActive()) sleeping = false;
+      }
+      int count = 0;
+      if (first_manifold < num_manifolds && island_of(manifolds_[first_manifold]) == id)
+        for (count = 1; first_manifold + count < num_manifolds && island_of(manifolds_[first_manifold + count]) == id;)
+          ++count;
+      if (!sleeping)
+        callback->processIsland(&bodies_[0], bodies_.size(), count ? &manifolds_[first_manifold] : nullptr, count, id);
+      first_manifold += count;
+    }
+  }
+
+ private:
+  btAlignedObjectArray<btPersistentManifold*> manifolds_;
+  btAlignedObjectArray<btCollisionObject*> bodies_;
+  IslandSort<btPersistentManifold> sort_;
 };
 
 IslandWorld::IslandWorld(btDispatcher* dispatcher, btBroadphaseInterface* broadphase, SurfaceSolver* solver,
                          btCollisionConfiguration* config)
-    : btMultiBodyDynamicsWorld(dispatcher, broadphase, solver, config), collector_(std::make_unique<Collector>()) {
+    : btMultiBodyDynamicsWorld(dispatcher, broadphase, solver, config), collector_(std::make_unique<Collector>()),
+      constraint_sort_(std::make_unique<ConstraintSort>()) {
   collector_->w = this;
   // Bullet's world made its island manager with btAlignedAlloc and placement new, and frees it so
   m_islandManager->~btSimulationIslandManager();
@@ -406,10 +540,10 @@ void IslandWorld::solveConstraints(btContactSolverInfo& info) {
   // btMultiBodyDynamicsWorld::solveExternalForces's bookkeeping (its island callback is not used)
   m_sortedConstraints.resize(m_constraints.size());
   for (int i = 0; i < m_constraints.size(); ++i) m_sortedConstraints[i] = m_constraints[i];
-  m_sortedConstraints.quickSort(btSortConstraintOnIslandPredicate2());
+  constraint_sort_->rigid.sort(m_sortedConstraints);
   m_sortedMultiBodyConstraints.resize(m_multiBodyConstraints.size());
   for (int i = 0; i < m_multiBodyConstraints.size(); ++i) m_sortedMultiBodyConstraints[i] = m_multiBodyConstraints[i];
-  m_sortedMultiBodyConstraints.quickSort(btSortMultiBodyConstraintOnIslandPredicate());
+  constraint_sort_->multibody.sort(m_sortedMultiBodyConstraints);
   m_constraintSolver->prepareSolve(getNumCollisionObjects(), getDispatcher()->getNumManifolds());
   awake_.assign(nmb, 0);
   for (int i = 0; i < nmb; ++i) awake_[i] = !sleeping(m_multiBodies[i]);
@@ -545,7 +679,7 @@ void IslandWorld::collect_islands() {
   manifolds_.resize(0);
   islands_.clear();
   island_of_tag_.assign(getNumCollisionObjects(), -1);
-  m_islandManager->buildAndProcessIslands(getDispatcher(), this, collector_.get());
+  static_cast<ContactIslands*>(m_islandManager)->build_and_process(getDispatcher(), this, collector_.get());
 }
 
 // Sorts the multibodies into their islands (island_mbs_, each island's mbs range; rest_: those in no awake

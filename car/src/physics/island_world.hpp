@@ -147,6 +147,9 @@ class IslandWorld : public btMultiBodyDynamicsWorld, public InverseMassSource {
   std::vector<Island> islands_;
   Island rest_{};                  // the multibodies in no awake island
   std::vector<int> island_of_tag_;  // Bullet's island id -> index into islands_, or -1
+  // the constraints' sort by island, as Bullet's (island_world.cpp)
+  struct ConstraintSort;
+  std::unique_ptr<ConstraintSort> constraint_sort_;
   std::vector<char> awake_;         // per multibody: awake before the islands were built
   std::vector<int> owner_;          // per multibody: its island's index (islands_.size(): none)
   std::vector<int> island_mbs_;     // multibody indices grouped by island
