@@ -540,10 +540,16 @@ void IslandWorld::solveConstraints(btContactSolverInfo& info) {
   // btMultiBodyDynamicsWorld::solveExternalForces's bookkeeping (its island callback is not used)
   m_sortedConstraints.resize(m_constraints.size());
   for (int i = 0; i < m_constraints.size(); ++i) m_sortedConstraints[i] = m_constraints[i];
-  constraint_sort_->rigid.sort(m_sortedConstraints);
+  if (own_sort_)
+    constraint_sort_->rigid.sort(m_sortedConstraints);
+  else
+    m_sortedConstraints.quickSort(btSortConstraintOnIslandPredicate2());
   m_sortedMultiBodyConstraints.resize(m_multiBodyConstraints.size());
   for (int i = 0; i < m_multiBodyConstraints.size(); ++i) m_sortedMultiBodyConstraints[i] = m_multiBodyConstraints[i];
-  constraint_sort_->multibody.sort(m_sortedMultiBodyConstraints);
+  if (own_sort_)
+    constraint_sort_->multibody.sort(m_sortedMultiBodyConstraints);
+  else
+    m_sortedMultiBodyConstraints.quickSort(btSortMultiBodyConstraintOnIslandPredicate());
   m_constraintSolver->prepareSolve(getNumCollisionObjects(), getDispatcher()->getNumManifolds());
   awake_.assign(nmb, 0);
   for (int i = 0; i < nmb; ++i) awake_[i] = !sleeping(m_multiBodies[i]);
@@ -679,7 +685,10 @@ void IslandWorld::collect_islands() {
   manifolds_.resize(0);
   islands_.clear();
   island_of_tag_.assign(getNumCollisionObjects(), -1);
-  static_cast<ContactIslands*>(m_islandManager)->build_and_process(getDispatcher(), this, collector_.get());
+  if (own_sort_)
+    static_cast<ContactIslands*>(m_islandManager)->build_and_process(getDispatcher(), this, collector_.get());
+  else
+    m_islandManager->buildAndProcessIslands(getDispatcher(), this, collector_.get());
 }
 
 // Sorts the multibodies into their islands (island_mbs_, each island's mbs range; rest_: those in no awake

@@ -64,6 +64,8 @@ class IslandWorld : public btMultiBodyDynamicsWorld, public InverseMassSource {
   void set_row_setup(RowSetup rows);
   // Whether predictUnconstraintMotion and updateAabbs reuse an object's unchanged results (Prediction, Box).
   void set_reuse_at_rest(bool on) { reuse_ = on; }
+  // Whether islands, manifolds and constraints are sorted by car's copy of Bullet's sort (IslandSort) or Bullet's.
+  void set_own_island_sort(bool on) { own_sort_ = on; }
 
   // Bullet's, with the multibodies integrated in their islands' tasks, or on the OpenMP threads.
   void integrateTransforms(btScalar dt) override;
@@ -166,6 +168,7 @@ class IslandWorld : public btMultiBodyDynamicsWorld, public InverseMassSource {
   uint64_t stamp_ = 0;  // solveConstraints calls so far
   void mark_factored(const btContactSolverInfo& info);
   bool reuse_ = true;
+  bool own_sort_ = true;
   bool integrated_ = false;  // this step's islands' tasks integrated the multibodies
 };
 

@@ -980,6 +980,7 @@ Physics::Impl::Impl(const WorldDescription& d, const Options& o) : options(o) {
   si.m_warmstartingFactor = 1.0;
   world.set_row_setup(o.rows);
   world.set_reuse_at_rest(o.reuse_at_rest);
+  world.set_own_island_sort(o.own_island_sort);
   gCalculateCombinedFrictionCallback = &min_friction;
   gCalculateCombinedRestitutionCallback = &no_restitution;
 }

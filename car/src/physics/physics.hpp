@@ -33,6 +33,10 @@ struct Options {
   // Skip the work Bullet would repeat bit for bit for an object at rest: its predicted transform and its bounding
   // box (IslandWorld). false: Bullet's own passes, the tests' reference.
   bool reuse_at_rest = true;
+  // Islands, island manifolds and constraints put in Bullet's order by car's copy of its sort, the last step's
+  // order taken again for an unchanged input (IslandWorld, IslandSort). false: Bullet's own sorts, the tests'
+  // reference.
+  bool own_island_sort = true;
 };
 
 class Robot;
