@@ -26,6 +26,8 @@ constexpr int kParallelWork = 32;
 constexpr int kParallelBodies = 4;
 // [-] multibodies from which the integrated positions (about 1 us per car and step) do, when not in the tasks
 constexpr int kParallelPositions = 16;
+// [-] collision objects from which their bounding boxes (about 0.3 us each) are found on several threads
+constexpr int kParallelBoxes = 128;
 
 // Bullet's test (btMultiBodyDynamicsWorld): a multibody with any collider in a sleeping island is asleep.
 bool sleeping(const btMultiBody* b) {
@@ -630,45 +632,65 @@ void IslandWorld::updateAabbs() {
     btCollisionWorld::updateAabbs();
     return;
   }
-  boxes_.resize(m_collisionObjects.size());
+  const int n = m_collisionObjects.size();
+  boxes_.resize(n);
   const btScalar threshold = gContactBreakingThreshold;
   const btVector3 margin(threshold, threshold, threshold);
-  for (int i = 0; i < m_collisionObjects.size(); ++i) {
-    btCollisionObject* o = m_collisionObjects[i];
-    if (!m_forceUpdateAllAabbs && !o->isActive()) continue;
+  auto skipped = [&](const btCollisionObject* o) { return !m_forceUpdateAllAabbs && !o->isActive(); };
+  // an object's box, from its inputs unless they are the last step's; left without its object if the box
+  // overflows (Bullet's rule below)
+  auto refresh = [&](int i) {
+    const btCollisionObject* o = m_collisionObjects[i];
+    if (skipped(o)) return;
     const bool swept = getDispatchInfo().m_useContinuous && o->getInternalType() == btCollisionObject::CO_RIGID_BODY &&
                        !o->isStaticOrKinematicObject();
     const bool fixed = o->isStaticObject();
     Box& b = boxes_[i];
-    if (!(b.object == o && b.shape == o->getCollisionShape() && b.threshold == threshold && b.swept == swept &&
-          b.fixed == fixed && same(b.world, o->getWorldTransform()) &&
-          (!swept || same(b.interpolation, o->getInterpolationWorldTransform())))) {
-      b.object = nullptr;
-      o->getCollisionShape()->getAabb(o->getWorldTransform(), b.min, b.max);
-      b.min -= margin;
-      b.max += margin;
-      if (swept) {
-        btVector3 min, max;
-        o->getCollisionShape()->getAabb(o->getInterpolationWorldTransform(), min, max);
-        min -= margin;
-        max += margin;
-        b.min.setMin(min);
-        b.max.setMax(max);
-      }
-      // Bullet's overflow rule: a moving object over 1e6 m across is disabled, with a report
-      if (!fixed && !((b.max - b.min).length2() < btScalar(1e12))) {
-        updateSingleAabb(o);
-        continue;
-      }
-      b.object = o;
-      b.shape = o->getCollisionShape();
-      b.world = o->getWorldTransform();
-      b.interpolation = o->getInterpolationWorldTransform();
-      b.threshold = threshold;
-      b.swept = swept;
-      b.fixed = fixed;
+    if (b.object == o && b.shape == o->getCollisionShape() && b.threshold == threshold && b.swept == swept &&
+        b.fixed == fixed && same(b.world, o->getWorldTransform()) &&
+        (!swept || same(b.interpolation, o->getInterpolationWorldTransform())))
+      return;
+    b.object = nullptr;
+    o->getCollisionShape()->getAabb(o->getWorldTransform(), b.min, b.max);
+    b.min -= margin;
+    b.max += margin;
+    if (swept) {
+      btVector3 min, max;
+      o->getCollisionShape()->getAabb(o->getInterpolationWorldTransform(), min, max);
+      min -= margin;
+      max += margin;
+      b.min.setMin(min);
+      b.max.setMax(max);
     }
-    m_broadphasePairCache->setAabb(o->getBroadphaseHandle(), b.min, b.max, m_dispatcher1);
+    if (!fixed && !((b.max - b.min).length2() < btScalar(1e12))) return;
+    b.object = o;
+    b.shape = o->getCollisionShape();
+    b.world = o->getWorldTransform();
+    b.interpolation = o->getInterpolationWorldTransform();
+    b.threshold = threshold;
+    b.swept = swept;
+    b.fixed = fixed;
+  };
+  // the boxes on the threads for many objects (each writes only its own), then the broad phase in object order
+  const int threads = n >= kParallelBoxes ? static_cast<int>(solvers_.size()) : 1;
+  if (threads > 1)
+    parallel_for_threads(
+        (n + 31) / 32,
+        [&](int c, int) {
+          for (int i = 32 * c; i < std::min(n, 32 * c + 32); ++i) refresh(i);
+        },
+        threads);
+  else
+    for (int i = 0; i < n; ++i) refresh(i);
+  for (int i = 0; i < n; ++i) {
+    btCollisionObject* o = m_collisionObjects[i];
+    if (skipped(o)) continue;
+    const Box& b = boxes_[i];
+    // Bullet's overflow rule: a moving object over 1e6 m across is disabled, with a report
+    if (b.object != o)
+      updateSingleAabb(o);
+    else
+      m_broadphasePairCache->setAabb(o->getBroadphaseHandle(), b.min, b.max, m_dispatcher1);
   }
 }
 
