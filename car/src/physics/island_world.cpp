@@ -70,28 +70,70 @@ void quicksort_keyed(std::vector<std::pair<int, T>>& a, int lo, int hi) {
   if (i < hi) quicksort_keyed(a, i, hi);
 }
 
+// Bullet's quicksort by island of (island, item) pairs, in place. The order is a function of the input alone, so
+// an input equal to the last one (robots driving on without new contacts: the same objects, manifolds and islands,
+// step after step) takes the last order without sorting.
+template <class T>
+class KeyedSort {
+ public:
+  void sort(std::vector<std::pair<int, T>>& keyed) {
+    const int n = static_cast<int>(keyed.size());
+    if (n < 2) return;
+    if (keyed != last_in_) {
+      last_in_ = keyed;
+      quicksort_keyed(keyed, 0, n - 1);
+      last_out_ = keyed;
+    } else {
+      keyed = last_out_;
+    }
+  }
+
+ private:
+  std::vector<std::pair<int, T>> last_in_, last_out_;
+};
+
 // Sorts arrays by island as Bullet's quickSort with its island predicate does (btSortConstraintOnIslandPredicate2,
-// btSortMultiBodyConstraintOnIslandPredicate, btPersistentManifoldSortPredicate). The order is a function of the
-// input alone, so an input equal to the last one (robots driving on without new contacts: the same manifolds and
-// islands, step after step) takes the last order without sorting.
+// btSortMultiBodyConstraintOnIslandPredicate, btPersistentManifoldSortPredicate).
 template <class T>
 class IslandSort {
  public:
   void sort(btAlignedObjectArray<T*>& array) {
     const int n = array.size();
-    if (n < 2) return;
     keyed_.resize(n);
     for (int i = 0; i < n; ++i) keyed_[i] = {island_of(array[i]), array[i]};
-    if (keyed_ != last_in_) {
-      last_in_ = keyed_;
-      quicksort_keyed(keyed_, 0, n - 1);
-      last_out_.swap(keyed_);
-    }
-    for (int i = 0; i < n; ++i) array[i] = last_out_[i].second;
+    sort_.sort(keyed_);
+    for (int i = 0; i < n; ++i) array[i] = keyed_[i].second;
   }
 
  private:
-  std::vector<std::pair<int, T*>> keyed_, last_in_, last_out_;
+  std::vector<std::pair<int, T*>> keyed_;
+  KeyedSort<T*> sort_;
+};
+
+// btUnionFind::sortIslands: each element's island (its root, with Bullet's path compression), then the elements
+// (island, collision object index) sorted by island with Bullet's quicksort (btUnionFindElementSortPredicate).
+class ElementSort {
+ public:
+  void sort(btUnionFind& uf) {
+    const int n = uf.getNumElements();
+    keyed_.resize(n);
+    for (int i = 0; i < n; ++i) {
+      uf.getElement(i).m_id = uf.find(i);
+#ifndef STATIC_SIMULATION_ISLAND_OPTIMIZATION
+      uf.getElement(i).m_sz = i;
+#endif
+      keyed_[i] = {uf.getElement(i).m_id, uf.getElement(i).m_sz};
+    }
+    sort_.sort(keyed_);
+    for (int i = 0; i < n; ++i) {
+      uf.getElement(i).m_id = keyed_[i].first;
+      uf.getElement(i).m_sz = keyed_[i].second;
+    }
+  }
+
+ private:
+  std::vector<std::pair<int, int>> keyed_;
+  KeyedSort<int> sort_;
 };
 
 // [first, count) of the entries of `island` in an array sorted by island (Bullet sorts both constraint arrays so).
@@ -271,7 +313,7 @@ class ContactIslands : public btSimulationIslandManager {
     }
     btCollisionObjectArray& objects = world->getCollisionObjectArray();
     btUnionFind& uf = getUnionFind();
-    uf.sortIslands();
+    element_sort_.sort(uf);
     const int num = uf.getNumElements();
     // an island all of whose tagged objects are neither active nor kept awake sleeps; a sleeping object of an
     // awake island wants deactivation from now
@@ -338,6 +380,7 @@ class ContactIslands : public btSimulationIslandManager {
   btAlignedObjectArray<btPersistentManifold*> manifolds_;
   btAlignedObjectArray<btCollisionObject*> bodies_;
   IslandSort<btPersistentManifold> sort_;
+  ElementSort element_sort_;
 };
 
 IslandWorld::IslandWorld(btDispatcher* dispatcher, btBroadphaseInterface* broadphase, SurfaceSolver* solver,
