@@ -124,6 +124,8 @@ class CameraPlugin : public Plugin {
   bool distorted_ = false;
   std::vector<double> lens_map_;  // [px] per output pixel: its point (u, v) in the pinhole frame
   void make_lens_map();
+  bool prepared_ = false;  // the per-pixel arrays made (prepare)
+  void prepare();
   // The frame's colour image resampled through the lens (docs/COMPAT-sensors.md "Lens distortion").
   void distort(FrameBuffer<uint8_t>* image, int pixel_bytes, int channel_bytes) const;
 };
