@@ -258,6 +258,10 @@ class Plugin {
   virtual void track(const StepContext& ctx, const RobotHandle& robot) {}
   // When the schedule is due (a lazy plug-in: and active), read-only: measure, push outputs.
   virtual void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) {}
+  // Whether post_physics may run on a thread beside other robots' plug-ins: it reads only its robot and the world's
+  // ray scene and writes only its own members and queue. The due ones of a step then share the threads (a fleet's
+  // lidars, all due at the same tick), each queue's outputs the same as one by one.
+  virtual bool concurrent() const { return false; }
   // When the schedule is due while a lazy plug-in is off, read-only: the state upstream's sensor keeps between
   // measurements whether or not anyone subscribes (an IMU's last velocity). No outputs, no noise drawn.
   virtual void idle(const StepContext& ctx, const RobotHandle& robot) {}

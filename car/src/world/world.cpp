@@ -224,6 +224,13 @@ struct World::Impl : WorldAccess {
   Environment env;
   std::unique_ptr<physics::Physics> phys;
   std::vector<std::unique_ptr<RobotRt>> robots;
+  // a step's due plug-ins whose post_physics runs on the threads (Plugin::concurrent), and their queues' sizes before
+  struct Due {
+    RobotRt* robot;
+    Instance* instance;
+    size_t before;
+  };
+  std::vector<Due> concurrent_due;
   bool physics_on = true;  // Gazebo's PhysicsEnabled: off, a step advances time only (RobotHandle::set_physics_enabled)
 };
 
@@ -302,6 +309,14 @@ void World::step(uint64_t n) {
   StepContext ctx;
   ctx.dt = dt;
   ctx.world = impl_.get();
+  // the outputs a plug-in pushed from `before` on: whose they are and when
+  auto stamp = [this](const Impl::RobotRt& robot, Instance& i, size_t before) {
+    for (size_t k = before; k < i.queue.size(); ++k) {
+      i.queue[k]->robot = robot.info.name;
+      i.queue[k]->plugin = i.info.config.name;
+      i.queue[k]->tick = tick_;
+    }
+  };
   for (uint64_t s = 0; s < n; ++s) {
     ctx.tick = tick_;
     for (auto& r : impl_->robots) r->applied.clear();
@@ -316,6 +331,8 @@ void World::step(uint64_t n) {
                             " is not finite; the world stops here (reset it, or delete the model)");
     }
     ctx.tick = ++tick_;
+    auto& later = impl_->concurrent_due;
+    later.clear();
     for (auto& r : impl_->robots) {
       for (auto& i : r->plugins) {
         const bool on = !i.info.lazy || i.active;
@@ -327,14 +344,25 @@ void World::step(uint64_t n) {
           continue;
         }
         const size_t before = i.queue.size();
-        i.plugin->post_physics(ctx, *r, &i.queue);
-        for (size_t k = before; k < i.queue.size(); ++k) {
-          i.queue[k]->robot = r->info.name;
-          i.queue[k]->plugin = i.info.config.name;
-          i.queue[k]->tick = tick_;
+        if (i.plugin->concurrent()) {
+          later.push_back({r.get(), &i, before});
+          continue;
         }
+        i.plugin->post_physics(ctx, *r, &i.queue);
+        stamp(*r, i, before);
       }
     }
+    if (later.empty()) continue;
+    // the concurrent ones on the threads; the ray scene brought up to date first, so that they only read it
+    if (later.size() > 1) {
+      impl_->rays();
+      parallel_for(static_cast<int>(later.size()), [&](int k) {
+        later[k].instance->plugin->post_physics(ctx, *later[k].robot, &later[k].instance->queue);
+      });
+    } else {
+      later[0].instance->plugin->post_physics(ctx, *later[0].robot, &later[0].instance->queue);
+    }
+    for (const auto& d : later) stamp(*d.robot, *d.instance, d.before);
   }
 }
 

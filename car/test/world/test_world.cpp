@@ -275,6 +275,47 @@ TEST(WorldPhysics, ManyCarsOnAnyThreadCountMatchBitForBit) {
   EXPECT_GT(std::hypot(dx, dy), 0.5);
 }
 
+// A fleet's lidars, all due at the same tick, sweep on the threads (Plugin::concurrent): six cars among box_house's
+// walls and boxes give the same scans, bit for bit and in the same order with the same robot, plug-in and tick, on
+// one thread and on two.
+TEST(WorldPhysics, FleetLidarsOnTwoThreadsMatchOneBitForBit) {
+  std::vector<LaserScanOut> runs[2];
+  const int threads[2] = {1, 2};
+  const int before = omp_get_max_threads();
+  for (int r = 0; r < 2; ++r) {
+    omp_set_num_threads(threads[r]);
+    auto w = std::make_unique<World>(load_world_file(std::string(CAR_SOURCE_DIR) + "/worlds/box_house.world"));
+    for (int i = 0; i < 6; ++i) {
+      const std::string name = "car" + std::to_string(i);
+      // [m], [rad], world frame: a row 1.2 m apart, each turning its own way
+      w->spawn(car(), name, at(-3.0 + 1.2 * i, 0.5, 0.5 * i));
+      w->set_cmd_vel(name, 0.3, i % 2 ? 0.8 : -0.8);
+      w->set_sensor_active(name, "gazebo_rplidar", true);
+    }
+    w->step(2000);
+    runs[r] = w->take_outputs<LaserScanOut>();
+    omp_set_num_threads(before);
+  }
+  // 5.5 Hz for 2 s: 11 scans per car
+  ASSERT_EQ(runs[0].size(), 66u);
+  ASSERT_EQ(runs[1].size(), runs[0].size());
+  for (size_t k = 0; k < runs[0].size(); ++k) {
+    const LaserScanOut &a = runs[0][k], &b = runs[1][k];
+    EXPECT_EQ(a.robot, b.robot) << k;
+    EXPECT_EQ(a.plugin, b.plugin) << k;
+    EXPECT_EQ(a.tick, b.tick) << k;
+    ASSERT_EQ(a.ranges.size(), b.ranges.size());
+    EXPECT_EQ(0, std::memcmp(a.ranges.data(), b.ranges.data(), a.ranges.size() * sizeof(float))) << k;
+    EXPECT_EQ(0, std::memcmp(a.intensities.data(), b.intensities.data(), a.intensities.size() * sizeof(float))) << k;
+  }
+  // cars in spawn order, each car's scans in tick order
+  EXPECT_EQ(runs[0][10].robot, "car0");
+  EXPECT_EQ(runs[0][11].robot, "car1");
+  // the 5.5 Hz schedule from tick 0: ceil(2000 k / 11)
+  EXPECT_EQ(runs[0][0].tick, 182u);
+  EXPECT_EQ(runs[0][1].tick, 364u);
+}
+
 TEST(WorldPhysics, OdometryAtUpdateRate) {
   auto w = box_house_with_car();
   w->step(1000);

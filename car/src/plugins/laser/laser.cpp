@@ -56,6 +56,8 @@ class Laser : public Plugin {
 
   double update_rate() const override { return rate_; }
   void reset() override { rng_ = rng0_; }
+  // reads the robot's link pose and the ray scene; writes its hits, noise generator and queue
+  bool concurrent() const override { return true; }
 
   void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) override {
     const int n = static_cast<int>(hits_.size());
