@@ -104,6 +104,15 @@ class IslandSort {
     sort_.sort(keyed_);
     for (int i = 0; i < n; ++i) array[i] = keyed_[i].second;
   }
+  // [first, count) of the entries of `island` in the array as the last sort left it
+  void range(int island, int& first, int& count) const {
+    const auto lo = std::lower_bound(keyed_.begin(), keyed_.end(), island,
+                                     [](const std::pair<int, T*>& e, int id) { return e.first < id; });
+    auto hi = lo;
+    while (hi != keyed_.end() && hi->first == island) ++hi;
+    first = static_cast<int>(lo - keyed_.begin());
+    count = static_cast<int>(hi - lo);
+  }
 
  private:
   std::vector<std::pair<int, T*>> keyed_;
@@ -246,6 +255,7 @@ void IslandDispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairs, 
 struct IslandWorld::ConstraintSort {
   IslandSort<btTypedConstraint> rigid;
   IslandSort<btMultiBodyConstraint> multibody;
+  bool current = false;  // both sorted this step (their ranges are the arrays')
 };
 
 struct IslandWorld::Collector : btSimulationIslandManager::IslandCallback {
@@ -270,8 +280,13 @@ struct IslandWorld::Collector : btSimulationIslandManager::IslandCallback {
       s.num_constraints = w->m_sortedConstraints.size();
       s.num_mb_constraints = w->m_sortedMultiBodyConstraints.size();
     } else {
-      range_of(w->m_sortedConstraints, island, s.constraints, s.num_constraints);
-      range_of(w->m_sortedMultiBodyConstraints, island, s.mb_constraints, s.num_mb_constraints);
+      if (w->constraint_sort_->current) {
+        w->constraint_sort_->rigid.range(island, s.constraints, s.num_constraints);
+        w->constraint_sort_->multibody.range(island, s.mb_constraints, s.num_mb_constraints);
+      } else {
+        range_of(w->m_sortedConstraints, island, s.constraints, s.num_constraints);
+        range_of(w->m_sortedMultiBodyConstraints, island, s.mb_constraints, s.num_mb_constraints);
+      }
     }
     w->islands_.push_back(s);
   }
@@ -572,6 +587,7 @@ void IslandWorld::solveConstraints(btContactSolverInfo& info) {
   const int nmb = m_multiBodies.size();
   // no matrix of an earlier step is found (built)
   ++stamp_;
+  constraint_sort_->current = false;
   bool rk4 = false;
   for (int i = 0; i < nmb; ++i) rk4 = rk4 || m_multiBodies[i]->isUsingRK4Integration();
   if (rk4) {
@@ -595,6 +611,7 @@ void IslandWorld::solveConstraints(btContactSolverInfo& info) {
     constraint_sort_->multibody.sort(m_sortedMultiBodyConstraints);
   else
     m_sortedMultiBodyConstraints.quickSort(btSortMultiBodyConstraintOnIslandPredicate());
+  constraint_sort_->current = own_sort_;
   m_constraintSolver->prepareSolve(getNumCollisionObjects(), getDispatcher()->getNumManifolds());
   awake_.assign(nmb, 0);
   for (int i = 0; i < nmb; ++i) awake_[i] = !sleeping(m_multiBodies[i]);

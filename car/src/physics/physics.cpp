@@ -323,8 +323,8 @@ class CompoundPlaneAlgorithm : public SettledAlgorithm {
   ~CompoundPlaneAlgorithm() override { free_children(); }
 
   bool settled() const override {
-    if (!unchanged()) return false;
-    for (const btCollisionAlgorithm* child : children_)
+    if (!unchanged() || !children_settled_) return false;
+    for (const btCollisionAlgorithm* child : nested_)
       if (!writes_own_manifold(child)) return false;
     return true;
   }
@@ -397,6 +397,16 @@ class CompoundPlaneAlgorithm : public SettledAlgorithm {
       const btCollisionObjectWrapper child(body, compound_->getChildShape(i), body->getCollisionObject(), world, -1, i);
       children_[i] = m_dispatcher->findAlgorithm(&child, plane, nullptr, BT_CONTACT_POINT_ALGORITHMS);
     }
+    // whether the children write only their own manifolds, found once: a child's kind does not change while it
+    // lives, except a nested compound's (its own shape may change), which settled() asks each time
+    children_settled_ = true;
+    nested_.clear();
+    for (btCollisionAlgorithm* child : children_) {
+      if (dynamic_cast<CompoundPlaneAlgorithm*>(child))
+        nested_.push_back(child);
+      else if (!writes_own_manifold(child))
+        children_settled_ = false;
+    }
   }
   void free_children() {
     for (btCollisionAlgorithm* child : children_) {
@@ -410,6 +420,8 @@ class CompoundPlaneAlgorithm : public SettledAlgorithm {
   const btCompoundShape* compound_ = nullptr;
   int revision_ = 0;
   std::vector<btCollisionAlgorithm*> children_;  // per child shape
+  bool children_settled_ = false;                // every child but the nested compounds writes its own manifold
+  std::vector<const btCollisionAlgorithm*> nested_;  // the children that are compounds on the plane
   btManifoldArray manifolds_;
 };
 
