@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "../../src/physics/physics.hpp"
 #include "car_sim/description.hpp"
@@ -79,6 +81,33 @@ inline Eigen::Isometry3d pose(double x, double y, double z, double yaw = 0.0, do
 
 inline void run(physics::Physics& p, int steps) {
   for (int i = 0; i < steps; ++i) p.step(kDt);
+}
+
+// box_house.world and a Physics over it (the Physics reads its world models from the description, which it keeps)
+struct HousePhysics {
+  std::unique_ptr<WorldDescription> desc;
+  std::unique_ptr<physics::Physics> p;
+};
+
+inline HousePhysics box_house(const physics::Options& o) {
+  HousePhysics h;
+  h.desc = std::make_unique<WorldDescription>(load_world_file(std::string(CAR_SOURCE_DIR) + "/worlds/box_house.world"));
+  h.p = std::make_unique<physics::Physics>(*h.desc, o, std::set<std::string>{});
+  return h;
+}
+
+// The seed car with its camera and lidar (test/data/car_camera_lidar04.urdf).
+inline RobotModel seed_car() {
+  return load_urdf_file(std::string(CAR_SOURCE_DIR) + "/test/data/car_camera_lidar04.urdf");
+}
+
+// A state's values for a bit-for-bit comparison: rotation matrix, position, velocity, angular velocity.
+inline void push_state(std::vector<double>& v, const ModelState& m) {
+  const Eigen::Matrix3d R = m.pose.linear();
+  v.insert(v.end(), R.data(), R.data() + 9);
+  for (int i = 0; i < 3; ++i) v.push_back(m.pose.translation()[i]);
+  for (int i = 0; i < 3; ++i) v.push_back(m.linear[i]);
+  for (int i = 0; i < 3; ++i) v.push_back(m.angular[i]);
 }
 
 }  // namespace test_physics

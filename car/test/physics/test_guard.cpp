@@ -23,19 +23,15 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 const double kNaN = std::nan("");
 
-struct Scene {
-  std::unique_ptr<WorldDescription> desc;
-  std::unique_ptr<physics::Physics> p;
+struct Scene : HousePhysics {
   btMultiBody* car = nullptr;
   btRigidBody* box = nullptr;
 };
 
 Scene scene() {
   Scene s;
-  s.desc = std::make_unique<WorldDescription>(load_world_file(std::string(CAR_SOURCE_DIR) + "/worlds/box_house.world"));
-  s.p = std::make_unique<physics::Physics>(*s.desc, options(), std::set<std::string>{});
-  s.p->add_robot(load_urdf_file(std::string(CAR_SOURCE_DIR) + "/test/data/car_camera_lidar04.urdf"), "car",
-                 pose(0, 0, 0), {});
+  static_cast<HousePhysics&>(s) = box_house(options());
+  s.p->add_robot(seed_car(), "car", pose(0, 0, 0), {});
   run(*s.p, 10);
   s.car = s.p->bullet().getMultiBody(0);
   s.box = s.p->world_model_body("unit_box", 0);

@@ -18,9 +18,7 @@ using namespace car_sim::test_physics;
 
 namespace {
 
-struct Fleet {
-  std::unique_ptr<WorldDescription> desc;  // the Physics reads its world models from it
-  std::unique_ptr<physics::Physics> p;
+struct Fleet : HousePhysics {
   std::vector<physics::Robot*> cars;
 };
 
@@ -30,9 +28,8 @@ Fleet fleet(bool own_sort) {
   physics::Options o = options();
   o.own_island_sort = own_sort;
   Fleet f;
-  f.desc = std::make_unique<WorldDescription>(load_world_file(std::string(CAR_SOURCE_DIR) + "/worlds/box_house.world"));
-  f.p = std::make_unique<physics::Physics>(*f.desc, o, std::set<std::string>{});
-  const RobotModel car = load_urdf_file(std::string(CAR_SOURCE_DIR) + "/test/data/car_camera_lidar04.urdf");
+  static_cast<HousePhysics&>(f) = box_house(o);
+  const RobotModel car = seed_car();
   const double poses[4][3] = {{-7.27, 1.2, M_PI / 2}, {0.0, 3.0, 0.0}, {1.0, 3.0, M_PI}, {0.0, -3.0, 0.0}};
   for (int i = 0; i < 4; ++i) {
     physics::Robot& r =
@@ -54,14 +51,6 @@ void drive(Fleet& f) {
     f.cars[i]->set_motor(0, left);
     f.cars[i]->set_motor(1, right);
   }
-}
-
-void push_state(std::vector<double>& v, const ModelState& m) {
-  const Eigen::Matrix3d R = m.pose.linear();
-  v.insert(v.end(), R.data(), R.data() + 9);
-  for (int i = 0; i < 3; ++i) v.push_back(m.pose.translation()[i]);
-  for (int i = 0; i < 3; ++i) v.push_back(m.linear[i]);
-  for (int i = 0; i < 3; ++i) v.push_back(m.angular[i]);
 }
 
 // Every car's root state and wheel joints, and unit_box's state, every 100 steps of 6 s.

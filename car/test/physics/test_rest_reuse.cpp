@@ -20,9 +20,7 @@ namespace {
 
 const char* const kBoxes[] = {"unit_box", "unit_box_1"};
 
-struct House {
-  std::unique_ptr<WorldDescription> desc;  // the Physics reads its world models from it
-  std::unique_ptr<physics::Physics> p;
+struct House : HousePhysics {
   physics::Robot* car = nullptr;
   int left = 0, right = 0;
 };
@@ -31,11 +29,9 @@ House house(bool reuse) {
   physics::Options o = options();
   o.reuse_at_rest = reuse;
   House r;
-  r.desc = std::make_unique<WorldDescription>(load_world_file(std::string(CAR_SOURCE_DIR) + "/worlds/box_house.world"));
-  r.p = std::make_unique<physics::Physics>(*r.desc, o, std::set<std::string>{});
+  static_cast<HousePhysics&>(r) = box_house(o);
   // [m], world frame: 1.9 m in front of unit_box's face, facing it (+y)
-  r.car = &r.p->add_robot(load_urdf_file(std::string(CAR_SOURCE_DIR) + "/test/data/car_camera_lidar04.urdf"), "car",
-                          pose(-7.27, 1.2, 0.0, M_PI / 2), {"left2link", "right2link"});
+  r.car = &r.p->add_robot(seed_car(), "car", pose(-7.27, 1.2, 0.0, M_PI / 2), {"left2link", "right2link"});
   r.left = r.car->add_motor(r.car->joint("left2link"), 2.0);
   r.right = r.car->add_motor(r.car->joint("right2link"), 2.0);
   return r;
@@ -46,14 +42,6 @@ void drive(House& r, double wheel_speed) {
   t.velocity = wheel_speed;  // [rad/s]
   r.car->set_motor(r.left, t);
   r.car->set_motor(r.right, t);
-}
-
-void push_state(std::vector<double>& v, const ModelState& m) {
-  const Eigen::Matrix3d R = m.pose.linear();
-  v.insert(v.end(), R.data(), R.data() + 9);
-  for (int i = 0; i < 3; ++i) v.push_back(m.pose.translation()[i]);
-  for (int i = 0; i < 3; ++i) v.push_back(m.linear[i]);
-  for (int i = 0; i < 3; ++i) v.push_back(m.angular[i]);
 }
 
 // Every dynamic box's state and Bullet's predicted transform of it (its interpolation transform), the car's root
@@ -135,7 +123,7 @@ std::vector<std::vector<double>> fleet_boxes(bool reuse) {
   o.reuse_at_rest = reuse;
   const WorldDescription desc = flat();
   physics::Physics p(desc, o, {});
-  const RobotModel car = load_urdf_file(std::string(CAR_SOURCE_DIR) + "/test/data/car_camera_lidar04.urdf");
+  const RobotModel car = seed_car();
   for (int i = 0; i < 32; ++i) {
     // [m], world frame: a 4 x 8 grid 1.5 m apart
     physics::Robot& r = p.add_robot(car, "car" + std::to_string(i), pose(1.5 * (i % 4), 1.5 * (i / 4), 0.0, 0.2 * i),
