@@ -6,7 +6,8 @@
 #          not instrumented: the runtime is preloaded, see below)
 #   tsan   .ws-tsan/, clang with -DCAR_SANITIZE=thread: test_threads (the publishing thread, the pacer, the pool behind
 #          parallel_for, built without car_sim) and test_core's threaded gtests (the island solver on 1-3 threads,
-#          the cameras' banded rendering), which needs car_sim built with TSan
+#          the bounding boxes and a fleet's lidars on the threads, the cameras' banded rendering), which needs car_sim
+#          built with TSan
 #   tsan-quick  test_threads only
 #   tsan-ros    sim_node built with TSan under two rostests (after tsan): node_rates (the publishing thread, the
 #          pacer, /clock) and sensors (the tutorial car in box_house: the island pool, the lidar's and the Kinect's
@@ -34,7 +35,7 @@ PY_TESTS=(test_world_api test_inertia test_model_check test_spawn_sdf test_check
   test_world_tools test_spawn_args test_static_tf test_world_map test_xacro_tool test_xacro14 test_arbotix)
 # test_core's gtests that run car_sim's threads: island_world.cpp's islands on 1-3 threads, raycast's banded
 # camera and fan rendering through parallel_for (test_threads holds the rest).
-TSAN_FILTER='WorldPhysics.IslandsOnTwoThreadsMatchOneBitForBit:WorldPhysics.ManyCarsOnAnyThreadCountMatchBitForBit:RayKernels.*:Camera.*:DepthCamera.*:MultiCamera.*'
+TSAN_FILTER='WorldPhysics.IslandsOnTwoThreadsMatchOneBitForBit:WorldPhysics.ManyCarsOnAnyThreadCountMatchBitForBit:WorldPhysics.FleetLidarsOnTwoThreadsMatchOneBitForBit:RestReuse.ManyCarsBoxesOnTheThreadsAreBulletsBitForBit:RayKernels.*:Camera.*:DepthCamera.*:MultiCamera.*'
 
 declare -A took result
 failed=0
