@@ -104,6 +104,8 @@ class IslandSort {
     sort_.sort(keyed_);
     for (int i = 0; i < n; ++i) array[i] = keyed_[i].second;
   }
+  // the island of entry i of the array as the last sort left it
+  int island(int i) const { return keyed_[i].first; }
   // [first, count) of the entries of `island` in the array as the last sort left it
   void range(int island, int& first, int& count) const {
     const auto lo = std::lower_bound(keyed_.begin(), keyed_.end(), island,
@@ -250,14 +252,15 @@ void IslandDispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairs, 
       threads_);
 }
 
-// Bullet's island manager calls this once per awake island, in increasing island order; it copies the island's
-// bodies and manifolds (Bullet's arrays are reused for the next island) and finds its constraints.
+// The constraint arrays' sorts by island (solveConstraints), whose keys give each island's range.
 struct IslandWorld::ConstraintSort {
   IslandSort<btTypedConstraint> rigid;
   IslandSort<btMultiBodyConstraint> multibody;
   bool current = false;  // both sorted this step (their ranges are the arrays')
 };
 
+// Bullet's island manager calls this once per awake island, in increasing island order; it copies the island's
+// bodies and manifolds (Bullet's arrays are reused for the next island) and finds its constraints.
 struct IslandWorld::Collector : btSimulationIslandManager::IslandCallback {
   IslandWorld* w = nullptr;
   void processIsland(btCollisionObject** bodies, int num_bodies, btPersistentManifold** manifolds, int num_manifolds,
@@ -382,9 +385,7 @@ class ContactIslands : public btSimulationIslandManager {
         if (o->isActive()) sleeping = false;
       }
       int count = 0;
-      if (first_manifold < num_manifolds && island_of(manifolds_[first_manifold]) == id)
-        for (count = 1; first_manifold + count < num_manifolds && island_of(manifolds_[first_manifold + count]) == id;)
-          ++count;
+      while (first_manifold + count < num_manifolds && sort_.island(first_manifold + count) == id) ++count;
       if (!sleeping)
         callback->processIsland(&bodies_[0], bodies_.size(), count ? &manifolds_[first_manifold] : nullptr, count, id);
       first_manifold += count;

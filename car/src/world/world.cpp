@@ -353,15 +353,12 @@ void World::step(uint64_t n) {
       }
     }
     if (later.empty()) continue;
-    // the concurrent ones on the threads; the ray scene brought up to date first, so that they only read it
-    if (later.size() > 1) {
-      impl_->rays();
-      parallel_for(static_cast<int>(later.size()), [&](int k) {
-        later[k].instance->plugin->post_physics(ctx, *later[k].robot, &later[k].instance->queue);
-      });
-    } else {
-      later[0].instance->plugin->post_physics(ctx, *later[0].robot, &later[0].instance->queue);
-    }
+    // the concurrent ones on the threads (one alone on this thread); the ray scene brought up to date first, so
+    // that they only read it
+    impl_->rays();
+    parallel_for(static_cast<int>(later.size()), [&](int k) {
+      later[k].instance->plugin->post_physics(ctx, *later[k].robot, &later[k].instance->queue);
+    });
     for (const auto& d : later) stamp(*d.robot, *d.instance, d.before);
   }
 }
