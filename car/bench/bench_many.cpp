@@ -54,7 +54,8 @@ int main(int argc, char** argv) {
     std::printf("cars %4d: %6.2fx real time, %.2f us per car and step\n", max_n, r, 1e3 / (r * max_n));
     return 0;
   }
-  // doubling until below real time, then bisection between the last two
+  // doubling until below real time, then bisection between the last two down to a step of lo / 32 (4 cars between
+  // 128 and 256, so that a target such as 200 is not judged by a step of 8)
   int lo = 0, hi = 0;
   for (int n = 8; n <= max_n; n *= 2) {
     const double r = rtf(car, n, seconds);
@@ -68,7 +69,7 @@ int main(int argc, char** argv) {
     }
   }
   if (lo > 0 && hi > 0) {
-    while (hi - lo > std::max(1, lo / 16)) {
+    while (hi - lo > std::max(1, lo / 32)) {
       const int mid = (lo + hi) / 2;
       const double r = rtf(car, mid, seconds);
       std::printf("cars %4d: %6.2fx real time\n", mid, r);

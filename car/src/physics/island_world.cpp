@@ -191,6 +191,20 @@ bool positive_zero(const btVector3& v) {
   return std::memcmp(v.m_floats, zero, sizeof zero) == 0;
 }
 
+// Whether btCollisionDispatcher::needsCollision refuses the pair whatever the objects' activation: either object's
+// checkCollideWith refuses the other. car's colliders decide that at spawn (SurfaceCollider: one robot's bodies,
+// self_collide, the joint between them) and nothing changes it later, so the answer is kept in the pair's
+// m_internalTmpValue (0 when Bullet makes the pair; it travels with the pair when Bullet moves it in the array):
+// 1 collides, 2 never. The pair's algorithm, if any, is then never called, as in Bullet.
+bool never_collides(btBroadphasePair& p) {
+  if (p.m_internalTmpValue == 0) {
+    const auto* a = static_cast<const btCollisionObject*>(p.m_pProxy0->m_clientObject);
+    const auto* b = static_cast<const btCollisionObject*>(p.m_pProxy1->m_clientObject);
+    p.m_internalTmpValue = a->checkCollideWith(b) && b->checkCollideWith(a) ? 1 : 2;
+  }
+  return p.m_internalTmpValue == 2;
+}
+
 }  // namespace
 
 bool writes_own_manifold(const btCollisionAlgorithm* a) {
@@ -233,10 +247,13 @@ void IslandDispatcher::dispatchAllCollisionPairs(btOverlappingPairCache* pairs, 
   btBroadphasePairArray& all = pairs->getOverlappingPairArray();
   settled_.clear();
   for (int i = 0; i < all.size(); ++i) {
-    if (settled(all[i]))
-      settled_.push_back(&all[i]);
+    btBroadphasePair& p = all[i];
+    // a pair needsCollision always refuses (a robot's own bodies without self-collision) makes and writes nothing
+    if (never_collides(p)) continue;
+    if (settled(p))
+      settled_.push_back(&p);
     else
-      defaultNearCallback(all[i], *this, info);
+      defaultNearCallback(p, *this, info);
   }
   const int n = static_cast<int>(settled_.size());
   if (n < kParallelPairs) {
@@ -466,9 +483,9 @@ void IslandWorld::mark_factored(const btContactSolverInfo& info) {
   for (int i = 0; i < m_multiBodyConstraints.size(); ++i) {
     btMultiBodyConstraint* c = m_multiBodyConstraints[i];
     btMultiBody *a = c->getMultiBodyA(), *b = c->getMultiBodyB();
-    // car's motor on its own multibody sets its rows up with SurfaceSolver::response
-    if (a == b && c->getConstraintType() == MULTIBODY_CONSTRAINT_1DOF_JOINT_MOTOR &&
-        dynamic_cast<JointMotor*>(c))
+    // car's motor on its own multibody sets its rows up with SurfaceSolver::response (JointMotor is final: its
+    // type compared, not searched along the class chain as a dynamic_cast does)
+    if (a == b && c->getConstraintType() == MULTIBODY_CONSTRAINT_1DOF_JOINT_MOTOR && typeid(*c) == typeid(JointMotor))
       continue;
     if (a) factored_[a->getUserIndex()] = 0;
     if (b) factored_[b->getUserIndex()] = 0;

@@ -62,7 +62,7 @@ const SurfaceSet* surfaces_of(const btCollisionObject* o);
 
 // Bullet's joint motor (velocity servo with an impulse cap), its row set up as Bullet's
 // btMultiBodyJointMotor::createConstraintRows / fillMultiBodyConstraint do, the response from SurfaceSolver::response.
-class JointMotor : public btMultiBodyJointMotor {
+class JointMotor final : public btMultiBodyJointMotor {
  public:
   using btMultiBodyJointMotor::btMultiBodyJointMotor;
   void createConstraintRows(btMultiBodyConstraintArray& rows, btMultiBodyJacobianData& data,

@@ -3,6 +3,9 @@
 // no gravity (<gravity>false</gravity>), so the base barely moves (reactions are 1e-5 of the joint's) and no
 // ground is needed. g = 10 m/s^2, dt = 1 ms.
 #include <gtest/gtest.h>
+#include <omp.h>
+
+#include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 
 #include "physics_fixtures.hpp"
 
@@ -134,7 +137,9 @@ namespace {
 
 // Two 5 cm cube fingers on prismatic joints along y, 0.2 m apart (centres at y = -0.1 and +0.1), gravity off.
 // The left one is driven at +0.2 m/s for 1 s, the right one held at 0. Returns the left finger's joint position.
-double close_fingers(bool self_collide) {
+// `cars` seed cars fall freely 10 m away beside it (no ground); their own link pairs lengthen the broad phase's
+// pair array, and *pairs gets its length after the first step.
+double close_fingers(bool self_collide, int cars = 0, int* pairs = nullptr) {
   const std::string flag = self_collide ? "<selfCollide>true</selfCollide>" : "";
   std::string xml = "<robot name=\"gripper\">" + kBase;
   for (const char* side : {"left", "right"}) {
@@ -148,13 +153,17 @@ double close_fingers(bool self_collide) {
   }
   physics::Physics p(world(""), options(), {});
   physics::Robot& r = p.add_robot(load_urdf_string(xml + "</robot>", "gripper.urdf"), "gripper", pose(0, 0, 2), {});
+  // [m], world frame: a row along x, 1.5 m apart
+  for (int i = 0; i < cars; ++i) p.add_robot(seed_car(), "car" + std::to_string(i), pose(10.0 + 1.5 * i, 0, 2), {});
   const int left = r.add_motor(r.joint("left"), 10.0);
   const int right = r.add_motor(r.joint("right"), 1000.0);
   MotorTarget drive;
   drive.velocity = 0.2;
   r.set_motor(left, drive);
   r.set_motor(right, MotorTarget());
-  run(p, 1000);
+  run(p, 1);
+  if (pairs) *pairs = p.bullet().getPairCache()->getNumOverlappingPairs();
+  run(p, 999);
   return r.joint_position(r.joint("left"));
 }
 
@@ -166,4 +175,21 @@ TEST(SelfCollide, OffByDefaultOnWhenSet) {
   // Tolerance 2 mm.
   EXPECT_NEAR(close_fingers(false), 0.2, 0.002);
   EXPECT_NEAR(close_fingers(true), 0.15, 0.002);
+}
+
+// The dispatcher on two threads (IslandDispatcher: 32 pairs or more) skips the pairs self-collision refuses by a
+// mark it keeps in each pair; the gripper's fingers still meet when it self-collides and pass through each other
+// when it does not, as alone (the values of OffByDefaultOnWhenSet).
+TEST(SelfCollide, TheThreadedDispatcherKeepsTheRule) {
+  const int before = omp_get_max_threads();
+  omp_set_num_threads(2);
+  int pairs[2] = {0, 0};
+  const double off = close_fingers(false, 10, &pairs[0]);
+  const double on = close_fingers(true, 10, &pairs[1]);
+  omp_set_num_threads(before);
+  // ten cars' own link pairs (about four each) and the fingers' pair: past the threaded path's 32
+  EXPECT_GE(pairs[0], 32);
+  EXPECT_GE(pairs[1], 32);
+  EXPECT_NEAR(off, 0.2, 0.002);
+  EXPECT_NEAR(on, 0.15, 0.002);
 }
