@@ -6,13 +6,19 @@
   is not searched for: "world".
 - planar_move: publishOdometry fills position x and y only, so the message's z is 0; the TF odom -> base carries
   the box's height (0.1 m: its link frame is at its centre).
+- The sensors' header.frame_id = tf::resolve(tf_prefix, frameName), each by its file's rule: the laser
+  (gazebo_ros_laser.cpp) and the camera (camera_utils) search tf_prefix upwards (tf::getPrefixParam): "pre/..." in
+  /r1, "glob/..." in /r2; the range, block laser and bumper read it in their own namespace (getParam), as p3d:
+  "pre/..." in /r1, the name as written in /r2.
 """
 import unittest
 
 import rospy
 import rostest
 import tf2_ros
+from gazebo_msgs.msg import ContactsState
 from nav_msgs.msg import Odometry
+from sensor_msgs.msg import CameraInfo, Image, LaserScan, PointCloud, Range
 
 from simtest import Recorder, lookup, sim_now, wait_for
 
@@ -22,17 +28,25 @@ class PluginFrames(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node('plugin_frames')
         topics = lambda: dict(rospy.get_published_topics())
-        for name in ('/r1/truth', '/r2/truth', '/r1/odom'):
+        sensors = {'scan': LaserScan, 'cam/image_raw': Image, 'cam/camera_info': CameraInfo, 'sonar': Range,
+                   'block': PointCloud, 'bumper': ContactsState}
+        names = ['/r1/truth', '/r2/truth', '/r1/odom'] + ['/%s/%s' % (r, s) for r in ('r1', 'r2') for s in sensors]
+        for name in names:
             wait_for('a publisher of %s' % name, lambda: name in topics())
         cls.truth = {r: Recorder('/%s/truth' % r) for r in ('r1', 'r2')}
         cls.odom = Recorder('/r1/odom')
-        for rec in list(cls.truth.values()) + [cls.odom]:
+        cls.sensor = {(r, s): Recorder('/%s/%s' % (r, s), t) for r in ('r1', 'r2') for s, t in sensors.items()}
+        recorders = list(cls.truth.values()) + [cls.odom] + list(cls.sensor.values())
+        for rec in recorders:
             rec.wait_connected()
         cls.tf = tf2_ros.Buffer(cache_time=rospy.Duration(600))
         cls.tf_listener = tf2_ros.TransformListener(cls.tf)
         t = sim_now() + 1.0
-        for rec in list(cls.truth.values()) + [cls.odom]:
+        for rec in recorders:
             rec.until(t)
+
+    def frame(self, ns, sensor):
+        return self.sensor[(ns, sensor)].msgs[-1].header.frame_id
 
     def test_p3d_frame_takes_the_tf_prefix_of_its_namespace(self):
         m = self.truth['r1'].msgs[-1]
@@ -49,6 +63,38 @@ class PluginFrames(unittest.TestCase):
         m = self.odom.msgs[-1]
         t = lookup(self.tf, m.header.frame_id, m.child_frame_id, m.header.stamp)
         self.assertAlmostEqual(t.transform.translation.z, 0.1, delta=0.002)
+
+    def test_laser_frame_takes_the_tf_prefix_of_its_namespace(self):
+        self.assertEqual(self.frame('r1', 'scan'), 'pre/laser_link')
+
+    def test_laser_searches_tf_prefix_upwards(self):
+        self.assertEqual(self.frame('r2', 'scan'), 'glob/laser_link')
+
+    def test_camera_frame_takes_the_tf_prefix_of_its_namespace(self):
+        self.assertEqual((self.frame('r1', 'cam/image_raw'), self.frame('r1', 'cam/camera_info')),
+                         ('pre/cam_link', 'pre/cam_link'))
+
+    def test_camera_searches_tf_prefix_upwards(self):
+        self.assertEqual((self.frame('r2', 'cam/image_raw'), self.frame('r2', 'cam/camera_info')),
+                         ('glob/cam_link', 'glob/cam_link'))
+
+    def test_range_frame_takes_the_tf_prefix_of_its_namespace(self):
+        self.assertEqual(self.frame('r1', 'sonar'), 'pre/sonar_link')
+
+    def test_range_does_not_search_tf_prefix_upwards(self):
+        self.assertEqual(self.frame('r2', 'sonar'), 'sonar_link')
+
+    def test_block_laser_frame_takes_the_tf_prefix_of_its_namespace(self):
+        self.assertEqual(self.frame('r1', 'block'), 'pre/block_link')
+
+    def test_block_laser_does_not_search_tf_prefix_upwards(self):
+        self.assertEqual(self.frame('r2', 'block'), 'block_link')
+
+    def test_bumper_frame_takes_the_tf_prefix_of_its_namespace(self):
+        self.assertEqual(self.frame('r1', 'bumper'), 'pre/bumper_frame')
+
+    def test_bumper_does_not_search_tf_prefix_upwards(self):
+        self.assertEqual(self.frame('r2', 'bumper'), 'bumper_frame')
 
 
 if __name__ == '__main__':

@@ -111,9 +111,12 @@ const PluginKind& block_laser_kind() {
     k.ignored = {{"alwaysOn", ""}};
     k.lazy = true;
     k.output_group = "clouds";
-    // sensor_msgs/PointCloud on topicName in frameName, queue 1
+    // sensor_msgs/PointCloud on topicName in frameName, queue 1; frame_name_ = tf::resolve(getParam("tf_prefix"),
+    // frameName): tf_prefix of the plug-in's own namespace
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
-      return std::vector<OutputPort>{sensor_port(c, robot, "cloud", SampleType::PointCloud, "topicName", c.text("frameName"), 1)};
+      OutputPort p = sensor_port(c, robot, "cloud", SampleType::PointCloud, "topicName", c.text("frameName"), 1);
+      p.frame_prefix_here = true;
+      return std::vector<OutputPort>{p};
     };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {

@@ -115,9 +115,11 @@ const PluginKind& bumper_kind() {
     k.lazy = true;
     k.output_group = "contacts";
     // gazebo_msgs/ContactsState on bumperTopicName, header frame frameName, queue 1
+    // frame_name_ = tf::resolve(getParam("tf_prefix"), frameName): tf_prefix of the plug-in's own namespace
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
-      return std::vector<OutputPort>{
-          sensor_port(c, robot, "contacts", SampleType::Contacts, "bumperTopicName", c.text("frameName"), 1)};
+      OutputPort p = sensor_port(c, robot, "contacts", SampleType::Contacts, "bumperTopicName", c.text("frameName"), 1);
+      p.frame_prefix_here = true;
+      return std::vector<OutputPort>{p};
     };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t) -> std::unique_ptr<Plugin> {

@@ -547,7 +547,8 @@ OutputPort image_port(const PluginConfig& c, const std::string& robot, const std
   p.topic = resolve_topic(base, topic);
   p.queue = 2;
   p.frame = c.text("frameName");
-  p.tf_prefix = false;  // the frame as written, without its leading '/'s
+  // camera_utils: frame_name_ = tf::resolve(tf::getPrefixParam(rosnode_), frameName), tf_prefix searched upwards
+  p.tf_prefix = true;
   return p;
 }
 

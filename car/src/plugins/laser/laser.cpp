@@ -223,9 +223,12 @@ const PluginKind& laser_kind() {
     k.ignored = {{"alwaysOn", ""}, {"updateRate", ""}, {"gaussianNoise", ""}, {"hokuyoMinIntensity", ""}};
     k.lazy = true;
     k.output_group = "scans";
-    // sensor_msgs/LaserScan on topicName in frameName, queue 10
+    // sensor_msgs/LaserScan on topicName in frameName, queue 10; frame_name_ = tf::resolve(tf::getPrefixParam(
+    // rosnode_), frameName): tf_prefix searched upwards from the plug-in's namespace
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
-      return std::vector<OutputPort>{sensor_port(c, robot, "scan", SampleType::LaserScan, "topicName", c.text("frameName"), 10)};
+      OutputPort p = sensor_port(c, robot, "scan", SampleType::LaserScan, "topicName", c.text("frameName"), 10);
+      p.tf_prefix = true;
+      return std::vector<OutputPort>{p};
     };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {

@@ -97,6 +97,8 @@ const PluginKind& range_kind() {
     // sensor update)
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
       OutputPort p = sensor_port(c, robot, "range", SampleType::Range, "topicName", c.text("frameName"), 1);
+      // frame_name_ = tf::resolve(getParam("tf_prefix"), frameName): tf_prefix of the plug-in's own namespace
+      p.frame_prefix_here = true;
       const double r = c.number("updateRate");
       p.min_period = r > 0 ? 1.0 / r : 0.0;
       return std::vector<OutputPort>{p};

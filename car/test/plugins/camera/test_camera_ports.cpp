@@ -62,7 +62,8 @@ TEST(CameraPorts, KinectTopicsInOrder) {
     EXPECT_EQ(ports[i].topic, want[i].second) << i;
     EXPECT_EQ(ports[i].queue, 2u) << i;
     EXPECT_EQ(ports[i].frame, "support_depth") << i;
-    EXPECT_FALSE(ports[i].tf_prefix) << i;
+    // camera_utils resolves the frame with tf_prefix searched upwards (the ROS skin looks it up)
+    EXPECT_TRUE(ports[i].tf_prefix) << i;
     EXPECT_EQ(ports[i].image.frame, 0u) << i;
   }
   EXPECT_FALSE(ports[3].image.millimetres);
