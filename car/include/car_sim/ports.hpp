@@ -186,6 +186,9 @@ struct ImagePortSettings {
   std::array<double, 5> distortion{};
   double baseline = 0.0;
   double period = 0.0;
+  // CameraInfo: camera_utils' <Cx>, <Cy>, <focalLength> [px]; a non-zero value replaces the sample's computed
+  // one in K and P (the images are rendered from horizontal_fov whatever they say)
+  double cx = 0.0, cy = 0.0, focal_length = 0.0;
   bool millimetres = false;             // DepthImage: 16UC1 [mm] (0 where there is no depth), else 32FC1 [m]
 };
 

@@ -28,9 +28,13 @@ sensor_msgs::CameraInfo camera_info(const car_sim::ImageSample& o, const car_sim
   ci.height = o.height;
   ci.distortion_model = "plumb_bob";
   ci.D.assign(port.distortion.begin(), port.distortion.end());
-  ci.K = {o.f, 0, o.cx, 0, o.f, o.cy, 0, 0, 1};
+  // [px]: the plug-in's non-zero <focalLength>, <Cx>, <Cy>, else the values the image was rendered with
+  const double f = port.focal_length != 0 ? port.focal_length : o.f;
+  const double cx = port.cx != 0 ? port.cx : o.cx;
+  const double cy = port.cy != 0 ? port.cy : o.cy;
+  ci.K = {f, 0, cx, 0, f, cy, 0, 0, 1};
   ci.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-  ci.P = {o.f, 0, o.cx, -o.f * port.baseline, 0, o.f, o.cy, 0, 0, 0, 1, 0};
+  ci.P = {f, 0, cx, -f * port.baseline, 0, f, cy, 0, 0, 0, 1, 0};
   return ci;
 }
 

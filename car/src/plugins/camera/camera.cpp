@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstddef>
 #include <cstring>
 #include <limits>
@@ -66,6 +67,10 @@ const std::vector<ParamDef>& camera_plugin_schema() {
       {"distortionT2", N, "0", ""},
       {"autoDistortion", ParamType::Flag, "false", ""},
       {"borderCrop", ParamType::Flag, "false", ""},
+      // camera_info's intrinsics: 0 = computed from the image and horizontal_fov (GazeboRosCameraUtils::Init)
+      {"Cx", N, "0", "px"},
+      {"Cy", N, "0", "px"},
+      {"focalLength", N, "0", "px"},
   };
   return s;
 }
@@ -74,10 +79,7 @@ const std::map<std::string, std::string>& camera_ignored_keys() {
   static const std::map<std::string, std::string> m = {
       {"alwaysOn", ""},
       {"baseline", "<baseline> is never read upstream; set hackBaseline"},
-      {"Cx", "car computes cx = (W-1)/2 from the image"},
-      {"Cy", "car computes cy = (H-1)/2 from the image"},
-      {"CxPrime", "car computes cx = (W-1)/2 from the image"},
-      {"focalLength", "car computes f from the image width and horizontal_fov"}};
+      {"CxPrime", "read upstream and used nowhere"}};
   return m;
 }
 
@@ -110,6 +112,20 @@ void finish_camera(ResolveContext& ctx) {
     std::istringstream cs(c.text("camera/distortion/center"));
     double x = 0, y = 0;
     if (!(cs >> x >> y)) ctx.fail_sensor("camera/distortion/center", "must be two numbers");
+  }
+  // GazeboRosCameraUtils::Init's check of a given focal length against width and horizontal_fov
+  // (ignition::math::equal: within 1e-6), in its words
+  const double focal = c.number("focalLength");
+  const double computed = c.number("camera/image/width") / (2.0 * std::tan(fov / 2.0));
+  if (focal != 0 && !(std::abs(focal - computed) <= 1e-6)) {
+    char msg[512];
+    std::snprintf(msg, sizeof msg,
+                  "The <focal_length>[%f] you have provided for camera_ [%s] is inconsistent with specified "
+                  "image_width [%d] and HFOV [%f].   Please double check to see that focal_length = width_ / (2.0 * "
+                  "tan(HFOV/2.0)), the explected focal_lengtth value is [%f], please update your camera_ model "
+                  "description accordingly.",
+                  focal, c.sensor.c_str(), static_cast<int>(c.number("camera/image/width")), fov, computed);
+    ctx.warn(Severity::Warning, "focal-length", "focalLength", msg);
   }
   const std::string& f = c.text("camera/image/format");
   if (camera_encoding(f).empty())
@@ -560,6 +576,9 @@ OutputPort info_port(const PluginConfig& c, const std::string& robot, const std:
   p.image.distortion = {c.number("distortionK1"), c.number("distortionK2"), c.number("distortionT1"),
                         c.number("distortionT2"), c.number("distortionK3")};
   p.image.baseline = baseline;
+  p.image.cx = c.number("Cx");
+  p.image.cy = c.number("Cy");
+  p.image.focal_length = c.number("focalLength");
   const double r = c.number("updateRate");
   p.image.period = r > 0 ? 1.0 / r : 0.0;
   return p;

@@ -204,3 +204,73 @@ TEST(CameraPorts, AKinectWithAnEmptyDepthBandLoads) {
   ASSERT_NE(s.depth, nullptr);
   for (int i = 0; i < s.width * s.height; ++i) EXPECT_TRUE(std::isnan(s.depth[i])) << i;
 }
+
+namespace {
+
+// A one-link robot with small_sensor("camera", a libgazebo_ros_camera.so plug-in with `keys`) on its link.
+ModelConfig camera_robot(const std::string& keys) {
+  return resolve_plugins(load_urdf_string(
+      "<robot name='bot'><link name='body'><inertial><mass value='1'/><inertia ixx='0.1' iyy='0.1' izz='0.1' "
+      "ixy='0' ixz='0' iyz='0'/></inertial></link><gazebo reference='body'>" +
+          small_sensor("camera", "<plugin name='cam_plugin' filename='libgazebo_ros_camera.so'><cameraName>cam"
+                                 "</cameraName>" + keys + "</plugin>") +
+          "</gazebo></robot>",
+      "bot.urdf"));
+}
+
+bool has_code(const ModelConfig& c, const std::string& code) {
+  for (const auto& d : c.diagnostics)
+    if (d.code == code) return true;
+  return false;
+}
+
+}  // namespace
+
+// camera_utils' non-zero <Cx>, <Cy>, <focalLength> [px] go to camera_info (the info port), as written; the image
+// port does not take them (the image is rendered from horizontal_fov).
+TEST(CameraPorts, NonZeroIntrinsicsGoToTheInfoPort) {
+  auto w = world_with_cube(ray_world(""), small_sensor("camera", "<plugin name='cam_plugin' filename='libgazebo_ros_"
+                                                                "camera.so'><cameraName>cam</cameraName><Cx>3.5</Cx>"
+                                                                "<Cy>2.25</Cy><focalLength>7.32195088685</focalLength>"
+                                                                "</plugin>"));
+  const auto ports = ports_of(*w, "cam_plugin");
+  ASSERT_EQ(ports.size(), 2u);
+  ASSERT_EQ(ports[1].type, SampleType::CameraInfo);
+  EXPECT_EQ(ports[1].image.cx, 3.5);
+  EXPECT_EQ(ports[1].image.cy, 2.25);
+  EXPECT_EQ(ports[1].image.focal_length, 7.32195088685);
+}
+
+// Absent, they are 0: camera_info takes the values the image is rendered with.
+TEST(CameraPorts, AbsentIntrinsicsAreZero) {
+  auto w = world_with_cube(ray_world(""), small_sensor("camera", "<plugin name='cam_plugin' filename='libgazebo_ros_"
+                                                                "camera.so'><cameraName>cam</cameraName></plugin>"));
+  const auto ports = ports_of(*w, "cam_plugin");
+  ASSERT_EQ(ports.size(), 2u);
+  EXPECT_EQ(ports[1].image.cx, 0.0);
+  EXPECT_EQ(ports[1].image.cy, 0.0);
+  EXPECT_EQ(ports[1].image.focal_length, 0.0);
+}
+
+// A focal length other than width / (2 tan(hfov / 2)) = 8 / (2 tan 0.5) = 7.3219509 px loads with camera_utils'
+// warning, in its words (typos included).
+TEST(CameraPorts, InconsistentFocalLengthWarns) {
+  const ModelConfig c = camera_robot("<focalLength>7</focalLength>");
+  ASSERT_EQ(c.plugins.size(), 1u);
+  bool found = false;
+  for (const auto& d : c.diagnostics)
+    if (d.code == "focal-length") {
+      found = true;
+      EXPECT_EQ(d.message,
+                "The <focal_length>[7.000000] you have provided for camera_ [cam] is inconsistent with specified "
+                "image_width [8] and HFOV [1.000000].   Please double check to see that focal_length = width_ / "
+                "(2.0 * tan(HFOV/2.0)), the explected focal_lengtth value is [7.321951], please update your "
+                "camera_ model description accordingly.");
+    }
+  EXPECT_TRUE(found);
+}
+
+// Within ignition::math::equal's 1e-6 of the computed value it loads quietly.
+TEST(CameraPorts, ConsistentFocalLengthLoadsQuietly) {
+  EXPECT_FALSE(has_code(camera_robot("<focalLength>7.3219513</focalLength>"), "focal-length"));
+}
