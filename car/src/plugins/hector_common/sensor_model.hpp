@@ -149,8 +149,24 @@ inline bool parse_n(const std::string& text, int n, double* out) {
   return !(ss >> rest);
 }
 
+// A model's sigma key (drift, gaussianNoise) with a negative value: hector's SensorModelGaussianKernel draws
+// sigma * X, so it runs as upstream and spreads as |sigma|, with a warning. A negative driftFrequency is refused:
+// the drift's sqrt(2 f) is NaN, and so is every measurement from the first update on.
+inline void check_sign(ResolveContext& ctx, const std::string& k, const std::string& name, const double* v, int n) {
+  bool negative = false;
+  for (int i = 0; i < n; ++i) negative = negative || v[i] < 0;
+  if (!negative) return;
+  if (name == "driftFrequency") {
+    ctx.fail(k, "must be >= 0: hector's drift takes sqrt(2 driftFrequency), NaN for a negative one");
+  } else {
+    ctx.warn(Severity::Warning, "negative-noise", k,
+             "<" + k + "> '" + ctx.config().text(k) +
+                 "' is negative: hector's GaussianKernel draws sigma * X, so it spreads as its absolute value");
+  }
+}
+
 // Checks a model's keys: N numbers each (a single number for a vector model is what upstream cannot read: a
-// warning, and the default is kept, as upstream does); drift, noise and frequency >= 0.
+// warning, and the default is kept, as upstream does); the signs of drift, noise and frequency (check_sign).
 inline void finish_model(ResolveContext& ctx, const std::string& prefix, int n) {
   for (const char* name : {"offset", "drift", "driftFrequency", "gaussianNoise", "scaleError"}) {
     const std::string k = key(prefix, name);
@@ -159,9 +175,7 @@ inline void finish_model(ResolveContext& ctx, const std::string& prefix, int n) 
     double v[3];
     const std::string& t = ctx.config().text(k);
     if (parse_n(t, n, v)) {
-      if (std::string(name) != "offset" && std::string(name) != "scaleError")
-        for (int i = 0; i < n; ++i)
-          if (v[i] < 0) ctx.fail(k, "must be >= 0");
+      if (std::string(name) != "offset" && std::string(name) != "scaleError") check_sign(ctx, k, name, v, n);
       continue;
     }
     if (n == 3 && parse_n(t, 1, v)) {
@@ -171,6 +185,13 @@ inline void finish_model(ResolveContext& ctx, const std::string& prefix, int n) 
     }
     ctx.fail(k, "'" + t + "' is not " + (n == 3 ? "three numbers 'x y z'" : "a number"));
   }
+}
+
+// N(0, sigma) as hector's SensorModelGaussianKernel draws it, sigma * X: a negative sigma gives -|sigma| X.
+inline double gauss(std::mt19937_64& g, double sigma) {
+  if (sigma > 0) return std::normal_distribution<double>(0.0, sigma)(g);
+  if (sigma < 0) return -std::normal_distribution<double>(0.0, -sigma)(g);
+  return 0.0;
 }
 
 template <int N>
@@ -210,9 +231,6 @@ class SensorModel {
   void set_drift(const Vec& d) { current_drift_ = d; }
 
  private:
-  static double gauss(std::mt19937_64& g, double sigma) {
-    return sigma > 0 ? std::normal_distribution<double>(0.0, sigma)(g) : 0.0;
-  }
   static void read(const PluginConfig& c, const std::string& k, Vec* v) {
     double x[N];
     if (parse_n(c.text(k), N, x))

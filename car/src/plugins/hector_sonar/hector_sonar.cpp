@@ -71,10 +71,7 @@ class HectorSonar : public Plugin {
   }
 
  private:
-  double gauss(double sigma) {
-    if (!(sigma > 0)) return 0.0;
-    return std::normal_distribution<double>(0.0, sigma)(rng_);
-  }
+  double gauss(double sigma) { return hector::gauss(rng_, sigma); }
 
   std::string link_;
   Eigen::Isometry3d sensor_pose_;
@@ -91,8 +88,10 @@ void finish(ResolveContext& ctx) {
   finish_ray(ctx);
   const PluginConfig& c = ctx.config();
   hector::finish_timer(ctx);
-  for (const char* k : {"drift", "driftFrequency", "gaussianNoise"})
-    if (c.number(k) < 0) ctx.fail(k, "must be >= 0");
+  for (const char* k : {"drift", "driftFrequency", "gaussianNoise"}) {
+    const double v = c.number(k);
+    hector::check_sign(ctx, k, k, &v, 1);
+  }
 }
 
 }  // namespace

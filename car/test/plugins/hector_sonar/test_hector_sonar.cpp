@@ -71,12 +71,46 @@ TEST(HectorSonar, GaussianNoiseSpread) {
   EXPECT_NEAR(std::sqrt(sum2 / 500), 0.02, 0.003);
 }
 
-TEST(HectorSonar, NegativeNoiseIsALoadError) {
+// hector's kernel draws sigma * X: gaussianNoise -0.02 draws the same numbers as 0.02 with the sign turned, so
+// each reading is the mirror image of the positive run's about the noise-free reading (same seed; 1e-6 m: the
+// readings are floats).
+TEST(HectorSonar, NegativeNoiseMirrorsThePositive) {
+  const auto clean = ranges("<updateRate>50</updateRate>");
+  const auto pos = ranges("<gaussianNoise>0.02</gaussianNoise><updateRate>50</updateRate>");
+  const auto neg = ranges("<gaussianNoise>-0.02</gaussianNoise><updateRate>50</updateRate>");
+  ASSERT_EQ(pos.size(), 50u);
+  ASSERT_EQ(neg.size(), pos.size());
+  ASSERT_EQ(clean.size(), pos.size());
+  for (size_t i = 0; i < pos.size(); ++i) {
+    const double r0 = clean[i].range;
+    EXPECT_NEAR(neg[i].range - r0, -(pos[i].range - r0), 1e-6) << i;
+  }
+  // the noise is there
+  EXPECT_GT(std::abs(pos[0].range - clean[0].range), 1e-4);
+}
+
+// ... and loads with a warning saying so.
+TEST(HectorSonar, NegativeNoiseWarns) {
+  const ModelConfig c = resolve_plugins(load_urdf_string(cube_robot(sonar("<gaussianNoise>-0.02</gaussianNoise>")), "cube"));
+  ASSERT_EQ(c.plugins.size(), 1u);
+  bool found = false;
+  for (const auto& d : c.diagnostics)
+    if (d.code == "negative-noise")
+      found = d.message == "<gaussianNoise> '-0.02' is negative: hector's GaussianKernel draws sigma * X, so it "
+                           "spreads as its absolute value";
+  EXPECT_TRUE(found);
+}
+
+// A negative driftFrequency would make upstream's drift NaN (sqrt(2 f)): refused.
+TEST(HectorSonar, NegativeDriftFrequencyIsALoadError) {
   try {
     World w(wall_world());
-    w.spawn(load_urdf_string(cube_robot(sonar("<gaussianNoise>-1</gaussianNoise>")), "cube"), "cube", at(0, 0, 0));
+    w.spawn(load_urdf_string(cube_robot(sonar("<driftFrequency>-1</driftFrequency>")), "cube"), "cube", at(0, 0, 0));
     FAIL() << "no error";
   } catch (const LoadError& e) {
-    EXPECT_NE(std::string(e.what()).find("plugin[hector_sonar]/gaussianNoise"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("plugin[hector_sonar]/driftFrequency: must be >= 0: hector's drift takes "
+                                         "sqrt(2 driftFrequency), NaN for a negative one"),
+              std::string::npos)
+        << e.what();
   }
 }
