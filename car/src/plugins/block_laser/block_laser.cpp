@@ -98,7 +98,7 @@ const PluginKind& block_laser_kind() {
     k.name = "block_laser";
     k.filenames = {"libgazebo_ros_block_laser.so"};
     k.model_level = false;
-    k.sensor_types = {"ray", "gpu_ray"};
+    k.sensor_types = {"ray"};  // a RayPlugin: its Load throws on a gpu_ray sensor (not a RaySensor)
     k.sensor_schema = ray_sensor_schema();
     k.schema = {
         {"robotNamespace", T, "", ""},

@@ -102,7 +102,7 @@ const PluginKind& hector_sonar_kind() {
     k.name = "hector_sonar";
     k.filenames = {"libhector_gazebo_ros_sonar.so"};
     k.model_level = false;
-    k.sensor_types = {"ray", "gpu_ray"};
+    k.sensor_types = {"ray"};  // its Load throws on a gpu_ray sensor (not a RaySensor)
     k.sensor_schema = ray_sensor_schema();
     k.schema = {
         {"robotNamespace", T, "", ""},

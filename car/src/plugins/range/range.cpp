@@ -79,7 +79,7 @@ const PluginKind& range_kind() {
     k.name = "range";
     k.filenames = {"libgazebo_ros_range.so"};
     k.model_level = false;
-    k.sensor_types = {"ray", "gpu_ray"};
+    k.sensor_types = {"ray"};  // a RayPlugin: its Load throws on a gpu_ray sensor (not a RaySensor)
     k.sensor_schema = ray_sensor_schema();
     k.schema = {
         {"robotNamespace", T, "", ""},

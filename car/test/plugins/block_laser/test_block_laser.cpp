@@ -115,3 +115,9 @@ TEST(BlockLaser, IntensityAveragesFourNeighbouringRays) {
   for (int j = 0; j < 9; ++j)
     for (int i = 0; i < 3; ++i) EXPECT_FLOAT_EQ(c.intensities[i + 3 * j], static_cast<float>(want[j])) << i << " " << j;
 }
+
+// A gpu_ray sensor is no RaySensor: upstream's RayPlugin::Load throws "RayPlugin requires a Ray Sensor as its parent". The model loads without the plug-in.
+TEST(BlockLaser, OnAGpuRaySensorThePluginDoesNotLoad) {
+  EXPECT_EQ(not_loaded_on("gpu_ray", "<plugin name='p' filename='libgazebo_ros_block_laser.so'/>"),
+            "libgazebo_ros_block_laser.so needs a sensor of type ray, not 'gpu_ray'; the plug-in is not loaded");
+}

@@ -114,3 +114,9 @@ TEST(HectorSonar, NegativeDriftFrequencyIsALoadError) {
         << e.what();
   }
 }
+
+// A gpu_ray sensor is no RaySensor: hector's Load throws "GazeboRosSonar requires a Ray Sensor as its parent". The model loads without the plug-in.
+TEST(HectorSonar, OnAGpuRaySensorThePluginDoesNotLoad) {
+  EXPECT_EQ(not_loaded_on("gpu_ray", "<plugin name='p' filename='libhector_gazebo_ros_sonar.so'/>"),
+            "libhector_gazebo_ros_sonar.so needs a sensor of type ray, not 'gpu_ray'; the plug-in is not loaded");
+}

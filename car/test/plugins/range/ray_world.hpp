@@ -63,5 +63,17 @@ inline std::string scan_axis(int samples, double min_angle, double max_angle) {
          std::to_string(min_angle) + "</min_angle><max_angle>" + std::to_string(max_angle) + "</max_angle>";
 }
 
+// The message of the plugin-not-loaded diagnostic when the cube carries `plugin` (a <plugin> element) on a 3 x 3
+// sensor of `type`; "" when it loads.
+inline std::string not_loaded_on(const std::string& type, const std::string& plugin) {
+  const ModelConfig c = resolve_plugins(load_urdf_string(
+      cube_robot(ray_sensor(type, "s", "0 0 0.2 0 0 0", scan_axis(3, -0.1, 0.1), scan_axis(3, -0.1, 0.1), 0.05, 3.0,
+                            plugin)),
+      "cube"));
+  for (const auto& d : c.diagnostics)
+    if (d.code == "plugin-not-loaded") return d.message;
+  return "";
+}
+
 }  // namespace test_support
 }  // namespace car_sim

@@ -114,3 +114,9 @@ TEST(Range, OneSampleLooksStraightAhead) {
   auto w = world_with_cube(wall_world(), one);
   EXPECT_NEAR(one_range(*w).range, to_wall(*w), 1e-4);
 }
+
+// A gpu_ray sensor is no RaySensor: upstream's RayPlugin::Load throws "RayPlugin requires a Ray Sensor as its parent". The model loads without the plug-in.
+TEST(Range, OnAGpuRaySensorThePluginDoesNotLoad) {
+  EXPECT_EQ(not_loaded_on("gpu_ray", "<plugin name='p' filename='libgazebo_ros_range.so'/>"),
+            "libgazebo_ros_range.so needs a sensor of type ray, not 'gpu_ray'; the plug-in is not loaded");
+}
