@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 namespace car_sim {
 
@@ -52,6 +53,10 @@ class Laser : public Plugin {
       dirs_[3 * i + 2] = 0.f;
     }
     hits_.resize(n);
+    // several vertical rows: Gazebo's RaySensor fills its scan with every row (index j * n + i), and
+    // gazebo_ros_laser copies all n x n_v ranges into the LaserScan; the angles stay the horizontal ones
+    if (c.number("ray/scan/vertical/samples") * c.number("ray/scan/vertical/resolution") >= 2)
+      grid_ = std::make_unique<RayGrid>(c);
   }
 
   double update_rate() const override { return rate_; }
@@ -60,19 +65,24 @@ class Laser : public Plugin {
   bool concurrent() const override { return true; }
 
   void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) override {
-    const int n = static_cast<int>(hits_.size());
     const Eigen::Isometry3d pose = robot.link_pose(link_) * sensor_pose_;
     const RayScene& scene = ctx.world->rays();
-    const float t_near = proto_.range_min;
-    // a planar fan: car's segment sweep (RayScene::cast_fan)
-    scene.cast_fan(pose.translation(), pose.linear(), dirs_.data(), n, a_, inc_, t_near, proto_.range_max, hits_.data());
+    const std::vector<RayHit>* hits = &hits_;
+    if (grid_) {
+      hits = &grid_->cast(ctx, pose);
+    } else {
+      // one row: a planar fan, car's segment sweep (RayScene::cast_fan)
+      scene.cast_fan(pose.translation(), pose.linear(), dirs_.data(), static_cast<int>(hits_.size()), a_, inc_,
+                     proto_.range_min, proto_.range_max, hits_.data());
+    }
+    const int n = static_cast<int>(hits->size());
     auto o = std::make_unique<LaserScanOut>(proto_);
     o->ranges.resize(n);
     o->intensities.resize(n);
     // one standard normal sample per in-range beam (ziggurat.hpp: a quarter of std::normal_distribution's cost)
     static const Ziggurat normal;
     for (int i = 0; i < n; ++i) {
-      const RayHit& h = hits_[i];
+      const RayHit& h = (*hits)[i];
       if (!std::isfinite(h.distance)) {
         o->ranges[i] = kInf;  // REP 117: no hit within range_max
         o->intensities[i] = 0.f;
@@ -101,6 +111,7 @@ class Laser : public Plugin {
   double a_ = 0, inc_ = 0;  // [rad] ray i's angle is a_ + i inc_
   std::vector<float> dirs_;
   std::vector<RayHit> hits_;
+  std::unique_ptr<RayGrid> grid_;  // several vertical rows: every ray of the grid, rows outer
 };
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include "laser/laser.hpp"
 #include "laser/ziggurat.hpp"
+#include "../range/ray_world.hpp"
 #include "seed_car.hpp"
 
 using namespace car_sim;
@@ -168,4 +169,29 @@ TEST(Lidar, ZigguratSamplesTheStandardNormal) {
   EXPECT_NEAR(negative / double(n), 0.5, 0.0018);
   std::mt19937_64 a(7), b(7);
   for (int i = 0; i < 1000; ++i) ASSERT_EQ(z.standard(a), z.standard(b));
+}
+
+// Several vertical rows (3 x 3 rays over +-0.1 rad both ways, 0.1 m ahead of the cube's centre and 0.4 m above it,
+// facing a wall whose face is the plane x = 2.0 m): Gazebo's RaySensor scans every row, index j * 3 + i, and
+// gazebo_ros_laser copies all nine ranges into the LaserScan, whose angles stay the horizontal ones. Ray (i, j) at
+// yaw h_i and pitch v_j meets the plane at 1.9 / (cos v_j cos h_i) m.
+TEST(Lidar, SeveralRowsGiveEveryRayRowsOuter) {
+  const std::string sensor = ray_sensor(
+      "ray", "lidar", "0.1 0 0.4 0 0 0", scan_axis(3, -0.1, 0.1), scan_axis(3, -0.1, 0.1), 0.05, 5.0,
+      "<plugin name='lidar' filename='libgazebo_ros_laser.so'><topicName>scan</topicName></plugin>");
+  auto w = world_with_cube(ray_world(box_model("wall", 2.1, 0, 0.5, 0.2, 4, 1)), sensor);
+  w->set_sensor_active("cube", "lidar", true);
+  w->step(200);
+  const auto scans = w->take_outputs<LaserScanOut>();
+  ASSERT_FALSE(scans.empty());
+  const LaserScanOut& s = scans.back();
+  EXPECT_FLOAT_EQ(s.angle_min, -0.1f);
+  EXPECT_FLOAT_EQ(s.angle_max, 0.1f);
+  EXPECT_FLOAT_EQ(s.angle_increment, 0.1f);
+  ASSERT_EQ(s.ranges.size(), 9u);
+  ASSERT_EQ(s.intensities.size(), 9u);
+  const double a[3] = {-0.1, 0.0, 0.1};
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i)
+      EXPECT_NEAR(s.ranges[j * 3 + i], 1.9 / (std::cos(a[j]) * std::cos(a[i])), 1e-4) << "ray " << i << ", row " << j;
 }
