@@ -24,12 +24,14 @@ struct OdometryOut : Output {
   Eigen::Vector3d linear = Eigen::Vector3d::Zero();        // [m/s], base frame
   Eigen::Vector3d angular = Eigen::Vector3d::Zero();       // [rad/s], base frame
   std::vector<JointState> joints;                          // the driven wheel joints at that time
+  std::vector<double> efforts;  // [N m] or [N], one per joint, for a port with_effort; empty: none
   void visit(FieldVisitor& v) const override;
   bool odometry_sample(OdometrySample* s) const override {
     *s = {pose, linear, angular, std::nullopt};
     return true;
   }
   const std::vector<JointState>* joint_states_sample() const override { return &joints; }
+  const std::vector<double>* joint_efforts_sample() const override { return efforts.empty() ? nullptr : &efforts; }
 };
 
 // A drive's odometry port: frames from the schema keys odometryFrame and robotBaseFrame, under the plug-in's

@@ -120,6 +120,9 @@ class Tricycle : public Plugin, public TwistDrive {
     const int joints[4] = {steer_, wheel_, left_, right_};
     for (int i = 0; i < 4; ++i)
       o->joints.push_back({*names[i], robot.joint_position(joints[i]), robot.joint_velocity(joints[i])});
+    // upstream's effort is each joint's GetForce(0): the force SetForce applied this step, none here (the two
+    // driven joints are velocity motors, the encoder wheels passive)
+    o->efforts.assign(4, 0.0);
     out->push_back(std::move(o));
   }
 
@@ -198,7 +201,11 @@ const PluginKind& tricycle_drive_kind() {
     // odom with its TF sent first; the wheels on request (joint states with queue 1000, as upstream)
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
       std::vector<OutputPort> ports = {odometry_port(c, robot, "odometryTopic", 1, TfOrder::Before)};
-      if (c.flag("publishWheelJointState")) ports.push_back(joint_states_port(c, robot, 1000));
+      if (c.flag("publishWheelJointState")) {
+        OutputPort js = joint_states_port(c, robot, 1000);
+        js.with_effort = true;  // name, position, velocity and effort, as publishWheelJointState fills them
+        ports.push_back(js);
+      }
       if (c.flag("publishWheelTF")) ports.push_back(wheel_tf_port(c, robot));
       return ports;
     };

@@ -147,3 +147,27 @@ TEST(Tricycle, NegativeUpdateRateIsEveryStepAndWarned) {
     if (d.element == "gazebo/plugin[tri]/updateRate") messages.push_back(d.message);
   EXPECT_EQ(messages, std::vector<std::string>{"<updateRate> -5 is not > 0: the plug-in updates every step, as upstream"});
 }
+
+// publishWheelJointState: the four joints with an effort each, GetForce(0) upstream: what SetForce applied in the
+// step, which nothing does to these joints (the driven two are velocity motors): zeros, with the port asking for
+// them.
+TEST(Tricycle, WheelJointStatesCarryZeroEfforts) {
+  World w(empty_world());
+  w.spawn(load_urdf_string(tricycle("<publishWheelJointState>true</publishWheelJointState>"), "tri.urdf"), "tri",
+          at(0, 0, 0));
+  Twist t;
+  t.linear.x() = 0.5;
+  w.set_cmd_vel("tri", t);
+  w.step(100);
+  bool port = false;
+  for (const auto& p : w.plugins())
+    for (const auto& o : p.outputs)
+      if (o.type == SampleType::JointStates) port = o.with_effort;
+  EXPECT_TRUE(port);
+  const auto outs = w.take_outputs();
+  ASSERT_FALSE(outs.empty());
+  const std::vector<double>* e = outs.back()->joint_efforts_sample();
+  ASSERT_NE(e, nullptr);
+  EXPECT_EQ(*e, std::vector<double>(4, 0.0));
+  ASSERT_EQ(outs.back()->joint_states_sample()->size(), 4u);
+}
