@@ -3,7 +3,8 @@
     static_transform_publisher x y z yaw pitch roll frame_id child_frame_id
     static_transform_publisher x y z qx qy qz qw frame_id child_frame_id
 
-Publishes one latched message on /tf_static and stays alive. Leading '/' in frame names is dropped.
+Publishes one latched message on /tf_static and stays alive. Leading '/' in frame names is dropped. The stamp is
+the time at start (sim time under /use_sim_time); the node then reads no more time and leaves /clock.
 """
 from __future__ import annotations
 
@@ -69,5 +70,8 @@ def main(argv=None) -> int:
     broadcaster = tf2_ros.StaticTransformBroadcaster()
     broadcaster.sendTransform(t)
     rospy.loginfo('static_transform_publisher: %s -> %s at (%g %g %g), q (%g %g %g %g)', frame, child, *xyz, *q)
+    # the latched message never changes: no more time to read
+    from car.rosclock import stop_clock
+    stop_clock()
     rospy.spin()
     return 0

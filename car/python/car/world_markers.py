@@ -100,7 +100,11 @@ def main(argv=None) -> int:
     path = rospy.get_param('~world', '')
     frame = rospy.get_param('~frame_id', 'odom')
     follow = rospy.get_param('~follow', True)
+    # [Hz] of wall time: how often moved models are looked for while someone subscribes
     rate = float(rospy.get_param('~rate', 10.0))
+    if not rate > 0:
+        rospy.logfatal('world_markers: ~rate must be > 0 [Hz of wall time], got %s', rate)
+        return 1
     from car import _core
     try:
         desc = _core.load_world_file(path)
@@ -114,20 +118,20 @@ def main(argv=None) -> int:
     pub.publish(to_marker_array(specs, frame))
     rospy.loginfo('world_markers: %s: %d markers of %d models in frame %s%s', path, len(specs), len(desc['models']),
                   frame, ', following moving models while someone subscribes' if follow else '')
+    # the markers carry no stamp (rviz draws them at the latest transform) and the loop below keeps wall time, as
+    # rviz draws: no sim time to read
+    from car.rosclock import stop_clock
+    stop_clock()
     if follow:
         # every model may move: a static one too, by set_model_state (docs/COMPAT.md)
         moving = {s['ns'] for s in specs}
         latest = {}
         from gazebo_msgs.msg import ModelStates
         last_sent = {}
-        r = rospy.Rate(rate)
+        import time
         while not rospy.is_shutdown():
-            try:
-                r.sleep()
-            except (rospy.ROSInterruptException, rospy.ROSTimeMovedBackwardsException):
-                if rospy.is_shutdown():
-                    break
-                continue
+            # [s] of wall time between looks at the newest model_states
+            time.sleep(1.0 / rate)
             raw = follower.take()
             if raw is not None:
                 msg = ModelStates().deserialize(raw._buff)

@@ -71,3 +71,19 @@ def test_non_finite_lockstep_timeout_warns_and_uses_5_s(master, tmp_path, value)
         except subprocess.TimeoutExpired:
             node.kill()
             node.wait()
+
+
+@pytest.mark.parametrize('value', ['0', '-2', 'nan'])
+def test_world_markers_non_positive_rate_stops_it_with_the_reason(master, tmp_path, value):
+    log = tmp_path / 'markers.log'
+    node = subprocess.Popen([roslib_packages.find_node('car', 'world_markers')[0], '_rate:=' + value], env=master,
+                            stdout=open(log, 'w'), stderr=subprocess.STDOUT)
+    try:
+        rc = node.wait(timeout=BOUND)
+    except subprocess.TimeoutExpired:
+        node.kill()
+        node.wait()
+        pytest.fail('world_markers with ~rate %s did not stop within %.0f s' % (value, BOUND))
+    text = log.read_text()
+    assert rc == 1, text
+    assert 'world_markers: ~rate must be > 0 [Hz of wall time], got %s' % float(value) in text, text

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""rostest: the latched world markers of box_house, and a marker following its model when it moves."""
+"""rostest: the latched world markers of box_house, and a marker following its model when it moves; car's rospy
+nodes that read the time only as they start (world_markers, the static transform) leave /clock."""
 import math
 import time
 import unittest
@@ -47,6 +48,23 @@ class WorldMarkersTest(unittest.TestCase):
         sub.unregister()
         simtest.wait_for('world_markers leaving model_states',
                          lambda: '/world_markers' not in nodes(1, '/gazebo/model_states'))
+
+    def graph(self, side, topic):
+        """The nodes on one side of topic (0: publishers, 1: subscribers), from the master."""
+        return dict(rosgraph.Master(rospy.get_name()).getSystemState()[side]).get(topic, [])
+
+    def leaves_clock(self, node, topic):
+        """node, once it publishes topic, is no longer among /clock's subscribers."""
+        simtest.wait_for('%s publishing %s' % (node, topic), lambda: node in self.graph(0, topic))
+        simtest.wait_for('%s off /clock' % node, lambda: node not in self.graph(1, '/clock'))
+        # the list is the master's: this test's own node takes /clock
+        self.assertIn(rospy.get_name(), self.graph(1, '/clock'))
+
+    def test_world_markers_leaves_clock(self):
+        self.leaves_clock('/world_markers', '/world_markers')
+
+    def test_static_transform_leaves_clock(self):
+        self.leaves_clock('/support_depth_tf', '/tf_static')
 
     def test_latched_markers_of_every_visual(self):
         arr = self.wait_for(lambda a: True)
