@@ -33,6 +33,16 @@ def master(tmp_path):
     core.wait(timeout=30)
 
 
+def exit_code(proc, what):
+    """proc's exit status; the test fails, naming `what`, when it runs past BOUND."""
+    try:
+        return proc.wait(timeout=BOUND)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.wait()
+        pytest.fail('%s did not stop within %.0f s' % (what, BOUND))
+
+
 def sim_node(env, *params, log):
     return subprocess.Popen([roslib_packages.find_node('car', 'sim_node')[0]] + list(params), env=env,
                             stdout=open(log, 'w'), stderr=subprocess.STDOUT)
@@ -41,12 +51,7 @@ def sim_node(env, *params, log):
 @pytest.mark.parametrize('value', ['nan', 'inf'])
 def test_non_finite_rtf_stops_the_node_with_the_reason(master, tmp_path, value):
     node = sim_node(master, '_rtf:=' + value, log=tmp_path / 'node.log')
-    try:
-        rc = node.wait(timeout=BOUND)
-    except subprocess.TimeoutExpired:
-        node.kill()
-        node.wait()
-        pytest.fail('sim_node with ~rtf %s did not stop within %.0f s' % (value, BOUND))
+    rc = exit_code(node, 'sim_node with ~rtf %s' % value)
     log = (tmp_path / 'node.log').read_text()
     assert rc == 1, log
     assert 'car: parameter ~rtf must be >= 0 (0 = as fast as possible), got %s' % value in log, log
@@ -78,12 +83,7 @@ def test_world_markers_non_positive_rate_stops_it_with_the_reason(master, tmp_pa
     log = tmp_path / 'markers.log'
     node = subprocess.Popen([roslib_packages.find_node('car', 'world_markers')[0], '_rate:=' + value], env=master,
                             stdout=open(log, 'w'), stderr=subprocess.STDOUT)
-    try:
-        rc = node.wait(timeout=BOUND)
-    except subprocess.TimeoutExpired:
-        node.kill()
-        node.wait()
-        pytest.fail('world_markers with ~rate %s did not stop within %.0f s' % (value, BOUND))
+    rc = exit_code(node, 'world_markers with ~rate %s' % value)
     text = log.read_text()
     assert rc == 1, text
     assert 'world_markers: ~rate must be > 0 [Hz of wall time], got %s' % float(value) in text, text

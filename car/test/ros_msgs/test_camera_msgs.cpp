@@ -110,15 +110,22 @@ int main(int argc, char** argv) {
   return RUN_ALL_TESTS();
 }
 
-// camera_info's K and P: the frame's own f = 2, cx = 1.5, cy = 1 with no <focalLength>, <Cx>, <Cy> (0); P[3] =
-// -f * hackBaseline (0.1 m).
-TEST(CameraInfo, ZeroIntrinsicsAreTheRenderedOnes) {
+namespace {
+
+// camera_info of the 4 x 3 frame (its own f = 2, cx = 1.5, cy = 1) through `port`, hackBaseline 0.1 m.
+sensor_msgs::CameraInfo info_through(car_sim::ImagePortSettings port) {
   auto o = frame("rgb8");
   car_sim::ImageSample s;
   o->image_sample(0, &s);
-  car_sim::ImagePortSettings port;
   port.baseline = 0.1;
-  const auto ci = car_ros::camera_info(s, port, "cam", ros::Time(1, 0));
+  return car_ros::camera_info(s, port, "cam", ros::Time(1, 0));
+}
+
+}  // namespace
+
+// K and P with no <focalLength>, <Cx>, <Cy> (0): the frame's own values; P[3] = -f * hackBaseline.
+TEST(CameraInfo, ZeroIntrinsicsAreTheRenderedOnes) {
+  const auto ci = info_through({});
   const boost::array<double, 9> K = {2, 0, 1.5, 0, 2, 1, 0, 0, 1};
   const boost::array<double, 12> P = {2, 0, 1.5, -0.2, 0, 2, 1, 0, 0, 0, 1, 0};
   EXPECT_EQ(ci.K, K);
@@ -127,15 +134,11 @@ TEST(CameraInfo, ZeroIntrinsicsAreTheRenderedOnes) {
 
 // camera_utils puts a non-zero <focalLength> 3, <Cx> 2.5, <Cy> 0.75 into K and P as written (P[3] = -3 * 0.1).
 TEST(CameraInfo, NonZeroIntrinsicsReplaceTheRenderedOnes) {
-  auto o = frame("rgb8");
-  car_sim::ImageSample s;
-  o->image_sample(0, &s);
   car_sim::ImagePortSettings port;
-  port.baseline = 0.1;
   port.focal_length = 3;
   port.cx = 2.5;
   port.cy = 0.75;
-  const auto ci = car_ros::camera_info(s, port, "cam", ros::Time(1, 0));
+  const auto ci = info_through(port);
   const boost::array<double, 9> K = {3, 0, 2.5, 0, 3, 0.75, 0, 0, 1};
   const boost::array<double, 12> P = {3, 0, 2.5, -3 * 0.1, 0, 3, 0.75, 0, 0, 0, 1, 0};
   EXPECT_EQ(ci.K, K);
