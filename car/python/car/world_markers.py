@@ -101,10 +101,15 @@ def main(argv=None) -> int:
     frame = rospy.get_param('~frame_id', 'odom')
     follow = rospy.get_param('~follow', True)
     # [Hz] of wall time: how often moved models are looked for while someone subscribes
-    rate = float(rospy.get_param('~rate', 10.0))
-    if not rate > 0:
+    rate = rospy.get_param('~rate', 10.0)
+    try:
+        ok = float(rate) > 0
+    except (TypeError, ValueError):
+        ok = False
+    if not ok:
         rospy.logfatal('world_markers: ~rate must be > 0 [Hz of wall time], got %s', rate)
         return 1
+    rate = float(rate)
     from car import _core
     try:
         desc = _core.load_world_file(path)
