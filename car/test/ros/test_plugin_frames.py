@@ -33,10 +33,16 @@ class PluginFrames(unittest.TestCase):
         names = ['/r1/truth', '/r2/truth', '/r1/odom'] + ['/%s/%s' % (r, s) for r in ('r1', 'r2') for s in sensors]
         for name in names:
             wait_for('a publisher of %s' % name, lambda: name in topics())
+        # one message of each sensor, each subscribed only until it comes: kept subscribed at rtf 0, their messages
+        # (10 Hz of sim time, thousands a wall second) would starve this process's TF listener
+        cls.sensor_frame = {}
+        for r in ('r1', 'r2'):
+            for s, t in sensors.items():
+                m = rospy.wait_for_message('/%s/%s' % (r, s), t, timeout=120.0)
+                cls.sensor_frame[(r, s)] = m.header.frame_id
         cls.truth = {r: Recorder('/%s/truth' % r) for r in ('r1', 'r2')}
         cls.odom = Recorder('/r1/odom')
-        cls.sensor = {(r, s): Recorder('/%s/%s' % (r, s), t) for r in ('r1', 'r2') for s, t in sensors.items()}
-        recorders = list(cls.truth.values()) + [cls.odom] + list(cls.sensor.values())
+        recorders = list(cls.truth.values()) + [cls.odom]
         for rec in recorders:
             rec.wait_connected()
         cls.tf = tf2_ros.Buffer(cache_time=rospy.Duration(600))
@@ -46,7 +52,7 @@ class PluginFrames(unittest.TestCase):
             rec.until(t)
 
     def frame(self, ns, sensor):
-        return self.sensor[(ns, sensor)].msgs[-1].header.frame_id
+        return self.sensor_frame[(ns, sensor)]
 
     def test_p3d_frame_takes_the_tf_prefix_of_its_namespace(self):
         m = self.truth['r1'].msgs[-1]
