@@ -344,6 +344,8 @@ struct PluginKind {
   std::map<std::string, NamespaceRule> file_namespace_rules;
   bool model_level = true;                  // may stand in a robot-level <gazebo><plugin>
   std::vector<std::string> sensor_types;    // <sensor type>s it may sit in; empty: not a sensor plug-in
+  // the files of the kind that each take only some of those (the laser's and velodyne's CPU and GPU files)
+  std::map<std::string, std::vector<std::string>> file_sensor_types;
   std::vector<ParamDef> sensor_schema;      // keys of its <sensor> (flattened paths, update_rate included)
   std::vector<ParamDef> schema;             // keys of its <plugin>
   std::map<std::string, std::string> ignored;  // keys upstream accepts and ignores -> a note ("" = silent)

@@ -128,9 +128,11 @@ PluginConfig resolve_one(const RobotModel& m, const PluginKind& kind, const Plug
   }
   ResolveContext ctx(m, p, s, &c, diags);
   if (s) {
-    if (std::find(kind.sensor_types.begin(), kind.sensor_types.end(), s->type) == kind.sensor_types.end())
+    const auto own = kind.file_sensor_types.find(p.filename);
+    const std::vector<std::string>& types = own == kind.file_sensor_types.end() ? kind.sensor_types : own->second;
+    if (std::find(types.begin(), types.end(), s->type) == types.end())
       // upstream's sensor plug-ins check their parent's type in Load and log or throw: the model loads without it
-      ctx.drop("", p.filename + " needs a sensor of type " + kind.sensor_types.front() + ", not '" + s->type + "'");
+      ctx.drop("", p.filename + " needs a sensor of type " + types.front() + ", not '" + s->type + "'");
     resolve_keys(m, kind.sensor_schema, sensor_params(*s), "sensor[" + s->name + "]", s->line, &c.params);
   }
   resolve_keys(m, kind.schema, p.params, ctx.where(""), p.line, &c.params);

@@ -225,6 +225,8 @@ const PluginKind& laser_kind() {
     k.namespace_rule = NamespaceRule::EmptyIsModel;  // GetRobotNamespace (gazebo_ros_laser.cpp, gazebo_ros_gpu_laser.cpp)
     k.model_level = false;
     k.sensor_types = {"ray", "gpu_ray"};
+    // RayPlugin::Load and GpuRayPlugin::Load throw on the other sensor type (a RaySensor, a GpuRaySensor)
+    k.file_sensor_types = {{"libgazebo_ros_laser.so", {"ray"}}, {"libgazebo_ros_gpu_laser.so", {"gpu_ray"}}};
     k.sensor_schema = ray_sensor_schema();
     k.schema = {
         {"robotNamespace", T, "", ""},

@@ -101,6 +101,9 @@ const PluginKind& velodyne_kind() {
     // <robotNamespace> as written (AsWritten): absent "/", empty NodeHandle(""): both global
     k.model_level = false;
     k.sensor_types = {"ray", "gpu_ray"};
+    // GazeboRosVelodyneLaser's Load throws on the other sensor type ("requires a [Gpu]Ray Sensor as its parent")
+    k.file_sensor_types = {{"libgazebo_ros_velodyne_laser.so", {"ray"}},
+                           {"libgazebo_ros_velodyne_gpu_laser.so", {"gpu_ray"}}};
     k.sensor_schema = ray_sensor_schema();
     k.schema = {
         {"robotNamespace", T, "/", ""},

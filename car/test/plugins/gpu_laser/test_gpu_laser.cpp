@@ -3,6 +3,7 @@
 
 #include <cstring>
 
+#include "../range/ray_world.hpp"
 #include "laser/laser.hpp"
 #include "seed_car.hpp"
 
@@ -44,4 +45,16 @@ TEST(GpuLaser, GpuRaySensorIsTheLaserKindAndScansTheSame) {
   ASSERT_EQ(a.ranges.size(), 360u);
   ASSERT_EQ(a.ranges.size(), b.ranges.size());
   EXPECT_EQ(0, std::memcmp(a.ranges.data(), b.ranges.data(), a.ranges.size() * sizeof(float)));
+}
+
+// RayPlugin::Load throws on a GpuRaySensor: the model loads without the plug-in.
+TEST(GpuLaser, LaserFileOnAGpuRaySensorDoesNotLoad) {
+  EXPECT_EQ(not_loaded_on("gpu_ray", "<plugin name='p' filename='libgazebo_ros_laser.so'/>"),
+            "libgazebo_ros_laser.so needs a sensor of type ray, not 'gpu_ray'; the plug-in is not loaded");
+}
+
+// GpuRayPlugin::Load throws on a RaySensor: the model loads without the plug-in.
+TEST(GpuLaser, GpuFileOnARaySensorDoesNotLoad) {
+  EXPECT_EQ(not_loaded_on("ray", "<plugin name='p' filename='libgazebo_ros_gpu_laser.so'/>"),
+            "libgazebo_ros_gpu_laser.so needs a sensor of type gpu_ray, not 'ray'; the plug-in is not loaded");
 }

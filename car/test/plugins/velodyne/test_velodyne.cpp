@@ -126,3 +126,15 @@ TEST(Velodyne, MinRangeNotBelowMaxRangeGivesEmptyClouds) {
   ASSERT_FALSE(clouds.empty());
   EXPECT_TRUE(clouds.back().points.empty());
 }
+
+// the CPU build's Load throws "requires a Ray Sensor as its parent": the model loads without the plug-in.
+TEST(Velodyne, CpuFileOnAGpuRaySensorDoesNotLoad) {
+  EXPECT_EQ(not_loaded_on("gpu_ray", "<plugin name='p' filename='libgazebo_ros_velodyne_laser.so'/>"),
+            "libgazebo_ros_velodyne_laser.so needs a sensor of type ray, not 'gpu_ray'; the plug-in is not loaded");
+}
+
+// the GPU build's Load throws "requires a GpuRay Sensor as its parent": the model loads without the plug-in.
+TEST(Velodyne, GpuFileOnARaySensorDoesNotLoad) {
+  EXPECT_EQ(not_loaded_on("ray", "<plugin name='p' filename='libgazebo_ros_velodyne_gpu_laser.so'/>"),
+            "libgazebo_ros_velodyne_gpu_laser.so needs a sensor of type gpu_ray, not 'ray'; the plug-in is not loaded");
+}
