@@ -207,9 +207,19 @@ struct RobotModel {
   bool anchored() const { return !world_joints.empty(); }
 };
 
-// Why mass properties cannot be simulated ("" when they can): mass <= 0, an inertia tensor that is not
-// positive definite, or principal moments that break the triangle inequality. code names the kind.
+// Why mass properties cannot be loaded ("" when they can): a mass that is not > 0 (Gazebo 11's ODELink::UpdateMass
+// throws for it). code names the kind ("mass-nonpositive").
 std::string inertial_problem(double mass, const Eigen::Matrix3d& inertia, std::string* code = nullptr);
+
+// What Gazebo 11 loads but no rigid body has ("" when nothing): a tensor that is not positive definite (ODE's
+// dBodySetMass cannot invert it and takes an identity inverse), or principal moments that break the triangle
+// inequality (simulated as written). The message says what car simulates. code: "inertia-not-positive-definite"
+// or "inertia-triangle". docs/COMPAT-validation.md "Inertia".
+std::string inertial_warning(const Eigen::Matrix3d& inertia, std::string* code = nullptr);
+
+// The tensor [kg m^2] the physics takes for a link's written one: the same, or the identity (1 kg m^2 about every
+// axis) where ODE's Cholesky factorisation fails, as Gazebo 11's dBodySetMass falls back to an identity inverse.
+Eigen::Matrix3d simulated_inertia(const Eigen::Matrix3d& inertia);
 
 struct LoadOptions {
   // Throw on the first Error-severity finding (a simulator must); false keeps every finding in

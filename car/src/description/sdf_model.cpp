@@ -34,7 +34,13 @@ Eigen::Isometry3d to_iso(const ignition::math::Pose3d& p) {
 
 int line_of(const sdf::ElementPtr& e) { return e && e->LineNumber() ? *e->LineNumber() : 0; }
 
-void fail_with(const std::string& source, const sdf::Errors& errors) {
+void refuse_errors(const std::string& source, const sdf::Errors& all) {
+  // LINK_INERTIA_INVALID is libsdformat's DOM; Gazebo 11 reads <inertial> from the element tree and simulates
+  // such a link (ODE's rule): car's own check warns instead (inertial_warning, docs/COMPAT-validation.md "Inertia")
+  sdf::Errors errors;
+  for (const auto& e : all)
+    if (e.Code() != sdf::ErrorCode::LINK_INERTIA_INVALID) errors.push_back(e);
+  if (errors.empty()) return;
   const sdf::Error& e = errors.front();
   std::string reason = e.Message();
   if (errors.size() > 1) reason += " (and " + std::to_string(errors.size() - 1) + " more)";
@@ -94,7 +100,7 @@ std::optional<Shape> to_shape(const sdf::Geometry& g, const std::string& where, 
 
 }  // namespace detail
 
-using detail::fail_with;
+using detail::refuse_errors;
 using detail::line_of;
 using detail::to_iso;
 
@@ -161,9 +167,13 @@ Link convert_link(const sdf::Link& l, const std::string& where, RobotModel* m) {
   const auto moi = in.MassMatrix().Moi();
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) ci.inertia(r, c) = moi(r, c);
-  const std::string why = inertial_problem(ci.mass, ci.inertia);
-  if (!why.empty())
+  // a mass <= 0 is refused (Gazebo 11's ODELink::UpdateMass throws); a tensor no rigid body has is a warning
+  // saying what is simulated (docs/COMPAT-validation.md "Inertia")
+  std::string code;
+  if (const std::string why = inertial_problem(ci.mass, ci.inertia); !why.empty())
     m->diagnostics.push_back({Severity::Error, "inertial", where + "/inertial", why, line_of(l.Element())});
+  else if (const std::string warn = inertial_warning(ci.inertia, &code); !warn.empty())
+    m->diagnostics.push_back({Severity::Warning, code, where + "/inertial/inertia", warn, line_of(l.Element())});
   out.inertial = ci;
   std::string surface_from;
   std::optional<double> laser_retro;
@@ -308,7 +318,7 @@ SdfRobot convert_sdf_model(const sdf::Model& sm, const std::string& source, cons
     ignition::math::Pose3d cp;
     const sdf::Errors e = parent == "world" ? sm.LinkByName(child)->SemanticPose().Resolve(cp)
                                             : sm.LinkByName(child)->SemanticPose().Resolve(cp, parent);
-    if (!e.empty()) fail_with(source, e);
+    refuse_errors(source, e);
     j.origin = to_iso(cp);
     // rule 6: the joint frame in the child link; car's joint frame is the child's
     ignition::math::Pose3d jp;
@@ -470,6 +480,8 @@ SdfRobot load_sdf_model_string(const std::string& xml, const std::string& source
                     "root element is not <sdf>; is this an SDF model?");
   detail::check_sdf_version(root, source_name);
   check_includes(root, source_name, base_dir);
+  // every number finite and every sensor within its limits, in the text and each file it includes (validate.hpp)
+  detail::prevalidate_sdf(xml, source_name, base_dir);
   sdf::Root sroot;
   bool rewritten = false;  // SDF 1.4's bare-text material scripts and Gazebo 11's pixel format names, read as Gazebo 11 did (validate.hpp)
   sdf::Errors errors;
@@ -480,7 +492,7 @@ SdfRobot load_sdf_model_string(const std::string& xml, const std::string& source
   } catch (const std::exception& e) {
     throw LoadError(source_name, 0, "sdf", std::string("libsdformat failed: ") + e.what());
   }
-  if (!errors.empty()) fail_with(source_name, errors);
+  refuse_errors(source_name, errors);
   const sdf::Model* model = sroot.Model();
   Eigen::Isometry3d world_pose = Eigen::Isometry3d::Identity();
   if (!model && sroot.WorldCount() > 0) {

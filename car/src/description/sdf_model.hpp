@@ -21,9 +21,10 @@ Eigen::Isometry3d to_iso(const ignition::math::Pose3d& p);
 // An element's line in its file; 0 when sdformat does not know it.
 int line_of(const sdf::ElementPtr& e);
 
-// sdformat's first error as a LoadError (with how many more there were). An error inside an included file names
-// that file; one in the text itself names source (sdformat calls such text "data-string").
-[[noreturn]] void fail_with(const std::string& source, const sdf::Errors& errors);
+// sdformat's first error as a LoadError (with how many more there were); returns when there is none. An error
+// inside an included file names that file; one in the text itself names source (sdformat calls such text
+// "data-string"). LINK_INERTIA_INVALID is not one: Gazebo 11 loads such a link (car warns).
+void refuse_errors(const std::string& source, const sdf::Errors& errors);
 
 // Rule 9: box, cylinder, sphere, mesh, plane as a Shape (origin identity); anything else is nullopt with a warning
 // at `where` (line: its line, 0 = unknown) appended to *diagnostics.

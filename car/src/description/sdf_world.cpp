@@ -20,7 +20,7 @@ namespace car_sim {
 
 namespace {
 
-using detail::fail_with;
+using detail::refuse_errors;
 using detail::line_of;
 using detail::to_iso;
 
@@ -284,7 +284,7 @@ WorldDescription load_world_file(const std::string& path) {
   } catch (const std::exception& e) {
     throw LoadError(path, 0, "sdf", std::string("libsdformat failed: ") + e.what());
   }
-  if (!errors.empty()) fail_with(path, errors);
+  refuse_errors(path, errors);
   WorldDescription d = convert(root, path);
   load_meshes(&d, path.find('/') == std::string::npos ? "." : path.substr(0, path.rfind('/')));
   return d;
@@ -300,7 +300,7 @@ WorldDescription load_world_string(const std::string& xml, const std::string& so
   } catch (const std::exception& e) {
     throw LoadError(source_name, 0, "sdf", std::string("libsdformat failed: ") + e.what());
   }
-  if (!errors.empty()) fail_with(source_name, errors);
+  refuse_errors(source_name, errors);
   WorldDescription d = convert(root, source_name);
   load_meshes(&d, "");
   return d;

@@ -4,6 +4,7 @@
 #include <tinyxml2.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <cctype>
 #include <cmath>
@@ -149,20 +150,36 @@ std::string fmt3(const Eigen::Vector3d& v) { return fmt(v.x()) + " " + fmt(v.y()
 
 }  // namespace
 
-std::string inertial_problem(double mass, const Eigen::Matrix3d& inertia, std::string* code) {
-  auto fail = [&](const char* c, const std::string& why) {
+std::string inertial_problem(double mass, const Eigen::Matrix3d& /*inertia*/, std::string* code) {
+  if (mass > 0.0) return "";
+  if (code) *code = "mass-nonpositive";
+  return "mass " + fmt(mass) + " kg is not > 0";
+}
+
+namespace {
+// ODE's test in dBodySetMass: dInvertPDMatrix's Cholesky factorisation fails at a pivot <= 0, as Eigen's LLT does.
+bool invertible(const Eigen::Matrix3d& inertia) {
+  return Eigen::LLT<Eigen::Matrix3d>(inertia).info() == Eigen::Success;
+}
+}  // namespace
+
+Eigen::Matrix3d simulated_inertia(const Eigen::Matrix3d& inertia) {
+  return invertible(inertia) ? inertia : Eigen::Matrix3d::Identity();
+}
+
+std::string inertial_warning(const Eigen::Matrix3d& inertia, std::string* code) {
+  auto say = [&](const char* c, const std::string& why) {
     if (code) *code = c;
     return why;
   };
-  if (!(mass > 0.0)) return fail("mass-nonpositive", "mass " + fmt(mass) + " kg is not > 0");
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(inertia);
-  const Eigen::Vector3d p = es.eigenvalues();  // ascending
-  const double scale = std::max(p.cwiseAbs().maxCoeff(), 1e-300);
-  if (p(0) <= 1e-12 * scale)
-    return fail("inertia-not-positive-definite", "principal moments (" + fmt3(p) + ") kg m^2 are not all > 0");
+  const Eigen::Vector3d p = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia).eigenvalues();  // ascending
+  if (!invertible(inertia))
+    return say("inertia-not-positive-definite",
+               "principal moments (" + fmt3(p) + ") kg m^2 are not all > 0: Gazebo 11 (ODE's dBodySetMass) cannot "
+               "invert the tensor and simulates the body with 1 kg m^2 about every axis; car does the same");
   if (p(0) + p(1) < p(2) * (1.0 - 1e-9))
-    return fail("inertia-triangle",
-                "principal moments (" + fmt3(p) + ") kg m^2 break the triangle inequality I1 + I2 >= I3");
+    return say("inertia-triangle", "principal moments (" + fmt3(p) + ") kg m^2 break the triangle inequality "
+                                   "I1 + I2 >= I3 (no rigid body has them); simulated as written, as in Gazebo 11");
   return "";
 }
 
@@ -388,20 +405,27 @@ class Loader {
     return j;
   }
 
-  // Mass properties the physics engine can use: positive mass, positive definite inertia obeying the
-  // triangle inequalities of its principal moments.
+  // A negative mass is refused on each link as written (lumping would fold it into its parent).
   // A link without <inertial> or with mass 0 is massless: lumped into its parent on a fixed joint, dropped on
   // a moving one (lumping.cpp), never an error by itself.
-  void check_inertials() {
+  void check_masses() {
     for (const auto& l : m_->links) {
-      const int line = line_of("link", l.name);
-      const std::string where = "link[" + l.name + "]/inertial";
       if (!l.inertial || l.inertial->mass == 0.0) continue;
-      const auto& in = *l.inertial;
       std::string code;
-      const std::string why = inertial_problem(in.mass, in.inertia, &code);
+      const std::string why = inertial_problem(l.inertial->mass, l.inertial->inertia, &code);
+      if (!why.empty()) add(Severity::Error, code, "link[" + l.name + "]/inertial/mass", why, line_of("link", l.name));
+    }
+  }
+
+  // The tensors the physics gets: each kept link's after lumping (a lumped link's own tensor never reaches it).
+  // What Gazebo 11 loads but no rigid body has is a warning saying what is simulated.
+  void check_inertias() {
+    for (const auto& l : m_->links) {
+      if (!l.inertial || !(l.inertial->mass > 0.0)) continue;
+      std::string code;
+      const std::string why = inertial_warning(l.inertial->inertia, &code);
       if (!why.empty())
-        add(Severity::Error, code, code == "mass-nonpositive" ? where + "/mass" : where + "/inertia", why, line);
+        add(Severity::Warning, code, "link[" + l.name + "]/inertial/inertia", why, line_of("link", l.name));
     }
   }
 
@@ -524,7 +548,7 @@ RobotModel load_urdf_string(const std::string& xml, const std::string& source_na
   }
   loader.check_colours(robot, "");
   loader.check_fixed_axes(robot);
-  loader.check_inertials();
+  loader.check_masses();
   // collisions with a size <= 0 (validate_urdf warned about each): left out, as docs/COMPAT-validation.md says
   detail::drop_degenerate_collisions(&model);
   parse_gazebo_extensions(robot, &model);
@@ -536,6 +560,7 @@ RobotModel load_urdf_string(const std::string& xml, const std::string& source_na
     detail::lump_fixed_joints(&model, lines);
     detail::drop_massless_links(&model, lines);
   }
+  loader.check_inertias();
 
   if (options.throw_on_error) {
     for (const auto& d : model.diagnostics)

@@ -55,6 +55,85 @@ bool finite_number(const std::string& tok, double* out) {
   return true;
 }
 
+// A limit as the schemas write it: "8192 px", "100000".
+std::string limit_text(double v, const char* unit) {
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str() + (*unit ? std::string(" ") + unit : "");
+}
+
+// The text of the element at path below e (nullptr when absent) and its value when it is a positive finite number.
+const tinyxml2::XMLElement* child_at(const tinyxml2::XMLElement* e, const std::string& path) {
+  std::istringstream parts(path);
+  std::string part;
+  while (e && std::getline(parts, part, '/')) e = e->FirstChildElement(part.c_str());
+  return e;
+}
+
+bool positive_at(const tinyxml2::XMLElement* e, const std::string& path, double* out) {
+  const tinyxml2::XMLElement* c = child_at(e, path);
+  double v = 0;
+  if (!c || !finite_number(trim(text_of(c)), &v) || !(v > 0)) return false;
+  *out = v;
+  return true;
+}
+
+std::string whole(double v) { return std::to_string(static_cast<long long>(v)); }
+
+}  // namespace
+
+void check_sensor_limits(const tinyxml2::XMLElement* sensor, const std::string& source) {
+  const char* name = sensor->Attribute("name");
+  const std::string where = std::string("sensor[") + (name ? name : "") + "]/";
+  auto fail = [&](const std::string& key, const std::string& why) {
+    throw LoadError(source, sensor->GetLineNum(), where + key, why);
+  };
+  double rate = 0;
+  positive_at(sensor, "update_rate", &rate);
+  // every <camera> (a multicamera has several; SDF defaults 320 x 240)
+  for (const tinyxml2::XMLElement* cam = sensor->FirstChildElement("camera"); cam;
+       cam = cam->NextSiblingElement("camera")) {
+    double side[2] = {320, 240};
+    const char* sides[2] = {"image/width", "image/height"};
+    for (int i = 0; i < 2; ++i) {
+      positive_at(cam, sides[i], &side[i]);
+      const std::string key = std::string("camera/") + sides[i];
+      if (side[i] > limits::kCameraSideMax)
+        fail(key, key + " " + trim(text_of(child_at(cam, sides[i]))) + " is above the limit " +
+                      limit_text(limits::kCameraSideMax, "px"));
+    }
+    const double px = side[0] * side[1];
+    if (px > limits::kCameraPixelsMax)
+      fail("camera/image/width", "width x height = " + whole(px) + " px is above the limit 4194304 px (2048 x 2048)");
+    if (px * rate > limits::kCameraPixelsPerSecondMax)
+      fail("update_rate", "width x height x update_rate = " + whole(px * rate) + " px/s is above the limit 1e9 px/s");
+  }
+  // <ray> (SDF 1.6, also in gpu_ray) or <lidar> (SDF 1.7+); SDF defaults 640 samples, resolution 1, one row
+  for (const char* ray : {"ray", "lidar"}) {
+    const tinyxml2::XMLElement* r = sensor->FirstChildElement(ray);
+    if (!r) continue;
+    double n[4] = {640, 1, 1, 1};
+    const char* axes[4] = {"scan/horizontal/samples", "scan/horizontal/resolution", "scan/vertical/samples",
+                           "scan/vertical/resolution"};
+    for (int i = 0; i < 4; ++i) {
+      positive_at(r, axes[i], &n[i]);
+      const std::string key = std::string(ray) + "/" + axes[i];
+      if (n[i] > limits::kRaySamplesMax)
+        fail(key, key + " " + trim(text_of(child_at(r, axes[i]))) + " is above the limit " +
+                      limit_text(limits::kRaySamplesMax, ""));
+    }
+    const double rays = n[0] * n[1] * std::max(1.0, n[2] * n[3]);
+    if (rays > limits::kRaysPerScanMax)
+      fail(std::string(ray) + "/scan/horizontal/resolution",
+           "samples x resolution = " + whole(rays) + " rays per scan is above the limit 1000000");
+    if (rays * rate > limits::kRaysPerSecondMax)
+      fail("update_rate", "samples x resolution x update_rate = " + whole(rays * rate) +
+                              " rays/s is above the limit 1e8 rays/s");
+  }
+}
+
+namespace {
 
 // The URDF pass: element paths and line numbers as the loader writes them.
 class UrdfCheck {
@@ -286,6 +365,7 @@ void check_sdf_numbers(const tinyxml2::XMLElement* root, const std::string& sour
     const tinyxml2::XMLElement* e = todo.back();
     todo.pop_back();
     for (const tinyxml2::XMLElement* c = e->LastChildElement(); c; c = c->PreviousSiblingElement()) todo.push_back(c);
+    if (std::string(e->Name()) == "sensor") check_sensor_limits(e, source);
     if (e->FirstChildElement() || !sdf_numeric_tags().count(e->Name())) continue;
     // <link><gravity> is SDF's per-link gravity switch, a boolean (sdformat reads it); the world's is a vector
     const tinyxml2::XMLElement* parent = e->Parent() ? e->Parent()->ToElement() : nullptr;
@@ -518,6 +598,9 @@ std::vector<Diagnostic> validate_urdf(const tinyxml2::XMLDocument& doc, const st
     const std::string tag = e->Name();
     if (tag == "link") check.link(e);
     if (tag == "joint") check.joint(e);
+    if (tag == "gazebo")
+      for (auto* s = e->FirstChildElement("sensor"); s; s = s->NextSiblingElement("sensor"))
+        check_sensor_limits(s, source);
   }
   return check.warnings;
 }
@@ -597,6 +680,9 @@ void validate_world(WorldDescription* d) {
       if (!std::isfinite(in.mass)) world_fail(*d, lw + "/inertial/mass", "mass " + num(in.mass) + " kg is not finite");
       if (!in.inertia.allFinite()) world_fail(*d, lw + "/inertial/inertia", "inertia is not finite");
       if (m.is_static) continue;
+      std::string code;
+      if (const std::string why = in.mass > 0.0 ? inertial_warning(in.inertia, &code) : ""; !why.empty())
+        world_warn(d, code, lw + "/inertial/inertia", why);
       if (in.mass > 0.0 && (in.mass < limits::kMassMin || in.mass > limits::kMassMax))
         d->diagnostics.push_back({Severity::Warning, "mass-range", lw + "/inertial/mass",
                                   "mass " + num(in.mass) + " kg is outside " + num(limits::kMassMin) + ".." +

@@ -30,6 +30,17 @@ constexpr int kIncludeDepthMax = 32;
 // models (and <include>s) in one world: libsdformat 12 holds about 2.5 MB and takes about 15 ms per model while it
 // parses (measured: 1000 static boxes, 2.5 GB, 15 s), so a larger world is refused before sdformat sees it
 constexpr int kWorldModelsMax = 1000;
+// Sensors, checked before anything is allocated, on every path a sensor comes by (check_sensor_limits). Cameras:
+// each image side [px], pixels per image (a depth frame holds about 80 bytes a pixel: rays, hits, colour, depth,
+// cloud) and per second (pixels x update_rate). Rays: samples and resolution per axis, rays per scan (horizontal x
+// vertical samples x resolution; a scan holds 40 bytes a ray; a 64-beam velodyne of 2048 columns is 131072) and
+// per second (rays per scan x update_rate).
+constexpr double kCameraSideMax = 8192;
+constexpr double kCameraPixelsMax = 4194304;  // 2048 x 2048
+constexpr double kCameraPixelsPerSecondMax = 1e9;
+constexpr double kRaySamplesMax = 100000;
+constexpr double kRaysPerScanMax = 1000000;
+constexpr double kRaysPerSecondMax = 1e8;
 
 }  // namespace limits
 
@@ -57,6 +68,12 @@ void prevalidate_sdf(const std::string& xml, const std::string& source, const st
 // <sdf version="..."> must be digits and dots ("1.6"): libsdformat throws std::invalid_argument on others (found by
 // fuzz_sdf_world and fuzz_sdf_model). A missing version is left to libsdformat, which refuses it.
 void check_sdf_version(const tinyxml2::XMLElement* root, const std::string& source);
+
+// A <sensor>'s sizes within the limits above, in URDF (<gazebo><sensor>) and SDF alike: the one check that serves
+// URDF robots, SDF robots, world models, nested models and model:// includes (docs/COMPAT-validation.md). Values
+// that are no positive finite number are left to the sensor's schema. Throws LoadError(source, line of <sensor>,
+// "sensor[NAME]/KEY", reason).
+void check_sensor_limits(const tinyxml2::XMLElement* sensor, const std::string& source);
 
 // A DOCTYPE that declares entities is refused (LoadError at "!DOCTYPE"), so no entity is ever expanded (billion
 // laughs) or fetched (external).

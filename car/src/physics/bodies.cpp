@@ -14,7 +14,8 @@ void accumulate(const Inertial& in, const Eigen::Isometry3d& top_to_link, std::v
   const Eigen::Isometry3d f = top_to_link * in.origin;
   masses->push_back(in.mass);
   coms->push_back(f.translation());
-  tensors->push_back(f.linear() * in.inertia * f.linear().transpose());
+  // each link's tensor as Gazebo 11's ODE takes it (the identity where it cannot be inverted)
+  tensors->push_back(f.linear() * simulated_inertia(in.inertia) * f.linear().transpose());
 }
 
 }  // namespace

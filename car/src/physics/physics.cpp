@@ -919,7 +919,7 @@ class BulletRobot : public Robot {
         f.body = static_cast<int>(i);
         f.mass = l->inertial->mass;
         f.com = T.translation();
-        f.inertia = T.linear() * l->inertial->inertia * T.linear().transpose();
+        f.inertia = T.linear() * simulated_inertia(l->inertial->inertia) * T.linear().transpose();
         f.no_gravity = no_gravity;
         f.decay = decay;
         link_forces_.push_back(f);
@@ -1053,7 +1053,7 @@ void Physics::Impl::add_world_model(const WorldModelDesc& m) {
     // principal frame of the link's inertia at its centre of mass
     const Inertial& in = *l.inertial;
     Eigen::Vector3d principal;
-    const Eigen::Matrix3d R = detail::principal_axes(in.inertia, &principal);
+    const Eigen::Matrix3d R = detail::principal_axes(simulated_inertia(in.inertia), &principal);
     Eigen::Isometry3d link_to_com = in.origin;
     link_to_com.linear() = in.origin.linear() * R;
     std::vector<std::pair<Shape, Eigen::Isometry3d>> parts;

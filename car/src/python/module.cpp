@@ -470,7 +470,7 @@ PYBIND11_MODULE(_core, m) {
         return py::make_tuple(code, why);
       },
       py::arg("mass"), py::arg("inertia"),
-      "(code, reason) when the mass properties cannot be simulated, ('', '') when they can.");
+      "(code, reason) when the mass cannot be loaded (not > 0), ('', '') when it can.");
   m.def("model_path", &car_sim::model_path, "Where model:// looks, in order.");
   m.def("resolve_uri", py::overload_cast<const std::string&, const std::string&>(&car_sim::resolve_uri),
         py::arg("uri"), py::arg("base_dir") = "", "The include rule: a path for a URI, '' when not found.");

@@ -223,14 +223,6 @@ TEST(ModelErrors, UrdfdomRejectionSaysWhy) {
   EXPECT_NE(msg.find("b"), std::string::npos) << msg;
 }
 
-TEST(ModelErrors, InertiaTriangleInequality) {
-  const std::string msg = load_error_of(
-      "<robot name='r'><link name='a'><inertial><mass value='1'/>"
-      "<inertia ixx='1' ixy='0' ixz='0' iyy='1' iyz='0' izz='3'/></inertial></link></robot>");
-  EXPECT_NE(msg.find("link[a]/inertial/inertia: principal moments (1 1 3) kg m^2 break the triangle inequality"),
-            std::string::npos) << msg;
-}
-
 TEST(ModelErrors, KeepAllFindingsWhenAsked) {
   LoadOptions o;
   o.throw_on_error = false;
