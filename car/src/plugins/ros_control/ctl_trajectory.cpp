@@ -3,6 +3,8 @@
 // (docs/COMPAT-control.md).
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <tuple>
 
 #include "controllers.hpp"
 
@@ -147,9 +149,21 @@ class TrajectoryCtl : public TrajectoryController {
     for (auto& p : pids_) p.reset();
     hold(t.time, false);
     last_state_ = t.time - (state_rate_ > 0 ? 1.0 / state_rate_ : 0.0);
+    started_ = true;
+    // a goal taken between the switch and this first update (the world paused) runs on its own clock (taken at
+    // `at`), from where the joints are here
+    if (early_) {
+      const auto [g, id, at] = *early_;
+      early_.reset();
+      goal_ = 0;
+      std::string why;
+      int code = 0;
+      set_trajectory(g, id, at, &why, &code);
+    }
   }
 
   void stopping(const ControlTime& t) override {
+    started_ = false;
     if (goal_) finish(TrajectoryResultOutput{}, -6, "controller stopped");  // preempted: the action answers it
   }
 
@@ -260,6 +274,13 @@ class TrajectoryCtl : public TrajectoryController {
           return false;
         }
     }
+    if (!started_) {
+      // checked and taken; it runs from the first update (starting), from where the joints are then
+      if (early_) finish(TrajectoryResultOutput{}, -6, "replaced by a new goal");
+      early_ = std::make_tuple(g, goal_id, now);
+      goal_ = goal_id;
+      return true;
+    }
     if (goal_) finish(TrajectoryResultOutput{}, -6, "replaced by a new goal");
     // the current desired state, from which the new trajectory starts
     std::vector<double> p0(n), v0(n, 0.0);
@@ -321,6 +342,7 @@ class TrajectoryCtl : public TrajectoryController {
   void cancel(uint64_t goal_id, double now) override {
     if (goal_ != goal_id || goal_id == 0) return;
     goal_ = 0;
+    early_.reset();
     hold(now, true);
   }
 
@@ -389,6 +411,8 @@ class TrajectoryCtl : public TrajectoryController {
   std::vector<std::vector<Segment>> traj_;
   std::vector<double> desired_p_, desired_v_;
   uint64_t goal_ = 0;
+  bool started_ = false;  // starting() called, stopping() not since
+  std::optional<std::tuple<TrajGoal, uint64_t, double>> early_;  // a goal taken before starting(): id, time [s]
   double end_time_ = 0, now_ = 0;
   std::vector<TrajectoryResultOutput> results_;
 };

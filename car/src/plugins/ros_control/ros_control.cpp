@@ -283,6 +283,18 @@ void RosControl::pre_physics(const StepContext& ctx, RobotHandle& robot) {
   if (ctx.tick - last_update_ >= period_ticks_) {
     read(robot);
     const control::ControlTime t = time_at(ctx.tick, ctx.dt);
+    // the switch's starts first, each from the joints read above (controller_manager's manageSwitch; upstream runs
+    // it after the updates, so its first update comes one control period later: docs/COMPAT-control.md)
+    for (auto& l : loaded_)
+      if (l.starting_due) {
+        l.controller->starting(t);
+        l.starting_due = false;
+        for (const auto& [leaf, value] : l.held) {
+          CommandResult ignored;
+          l.controller->command(leaf, value, t.time, &ignored);
+        }
+        l.held.clear();
+      }
     for (auto& l : loaded_)
       if (l.running) l.controller->update(t);
     last_update_ = ctx.tick;
@@ -348,7 +360,7 @@ void RosControl::post_physics(const StepContext& ctx, const RobotHandle& robot, 
   t.time = ctx.time();
   t.period = ctx.dt;
   for (auto& l : loaded_)
-    if (l.running) l.controller->publish(t, out);
+    if (l.running && !l.starting_due) l.controller->publish(t, out);
 }
 
 control::JointIo& RosControl::claim(const std::string& controller, const std::string& key, const std::string& joint,
@@ -381,7 +393,7 @@ void RosControl::load(const std::string& name, const std::string& type, const co
   }
   auto c = t->make();
   c->configure(control::ParamReader(name, params), *this);
-  loaded_.push_back({name, type, false, std::move(c)});
+  loaded_.push_back({name, type, false, false, {}, std::move(c)});
 }
 
 void RosControl::unload(const std::string& name) {
@@ -437,12 +449,16 @@ bool RosControl::switch_controllers(const std::vector<std::string>& start, const
   }
   const control::ControlTime t = time_at(last_update_, dt_);
   for (Loaded* l : to_stop) {
-    l->controller->stopping(t);
+    // stopped before its first update: it never started
+    if (!l->starting_due) l->controller->stopping(t);
     l->running = false;
+    l->starting_due = false;
+    l->held.clear();
   }
+  // running from now on (list_controllers says so, commands reach it); starting() at the next control update
   for (Loaded* l : to_start) {
-    l->controller->starting(t);
     l->running = true;
+    l->starting_due = true;
   }
   // each joint follows the interface of the running controller that claims it
   for (size_t k = 0; k < joints_.size(); ++k) modes_[k] = -1;
@@ -478,6 +494,11 @@ void RosControl::command(const std::string& port, const Command& value, CommandR
         result->code = -1;  // INVALID_GOAL
         result->reason = "controller '" + name + "' is not running";
       }
+      return;
+    }
+    // a goal is answered now (the trajectory controller keeps it for its first update); a command waits for it
+    if (l.starting_due && !std::holds_alternative<TrajectoryGoal>(value)) {
+      l.held.emplace_back(leaf, value);
       return;
     }
     const size_t first = result->notes.size();

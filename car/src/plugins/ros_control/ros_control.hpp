@@ -140,6 +140,13 @@ class RosControl : public Plugin, public control::Hardware {
   struct Loaded {
     std::string name, type;
     bool running = false;
+    // started by a switch, starting() not yet called: it is called at the next control update, after the joints
+    // are read (controller_manager's manageSwitch in update()), so a controller started while paused holds the
+    // joints where they are when the world plays (spawn_model -J, set_model_configuration)
+    bool starting_due = false;
+    // commands (not goals) that came while starting was due: given to it right after starting(), so that one sent
+    // after the switch answered is not overwritten by starting's hold (upstream's switch returns once started)
+    std::vector<std::pair<std::string, Command>> held;
     std::unique_ptr<control::Controller> controller;
   };
 

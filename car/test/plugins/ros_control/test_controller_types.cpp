@@ -33,9 +33,15 @@ control::CommandController& command_ctl(RosControl& rc, const std::string& name)
   return *dynamic_cast<control::CommandController*>(rc.controller(name));
 }
 
+// A command through the manager's port, as the node gives it (held until a just-started controller's first update).
 void command(RosControl& rc, const std::string& name, const std::vector<double>& v) {
-  std::string why;
-  ASSERT_TRUE(command_ctl(rc, name).set_command(v, &why)) << why;
+  CommandResult r;
+  if (command_ctl(rc, name).group())
+    rc.command(name + "/command", Float64Array{v}, &r);
+  else
+    rc.command(name + "/command", Float64{v.at(0)}, &r);
+  ASSERT_FALSE(r.refused) << r.reason;
+  for (const auto& n : r.notes) ADD_FAILURE() << n.text;
 }
 
 control::TrajectoryController& trajectory_ctl(RosControl& rc, const std::string& name) {
@@ -309,4 +315,55 @@ TEST(ControllerTypes, EffortTrajectoryHoldsTheArmAgainstGravityWithinItsConstrai
   EXPECT_EQ(s.joints[1].name, "elbow");
   EXPECT_NEAR(s.effort[0], -tau_s, 1e-3);
   EXPECT_NEAR(s.effort[1], -tau_e * std::cos(tau_e / 500), 1e-3);
+}
+
+// ---- starting at the first update (controller_manager's manageSwitch in update()) ---------------------------
+
+// A world paused: the controllers are switched on, then the joints are set (spawn_model -J, set_model_configuration),
+// then it plays. Each controller holds where the joints are at its first update, not where they were at the switch.
+// The turntable's joints carry no gravity torque and no load, so a held joint stays at its command up to the
+// solver's precision.
+TEST(ControllerStart, APositionControllerHoldsTheJointWhereItIsAtItsFirstUpdate) {
+  auto w = world_with("turntable.urdf", "tt");
+  RosControl& rc = manager(*w, "tt");
+  rc.load("a_pos", "position_controllers/JointPositionController", Params{{"joint", {"a"}}});
+  start(rc, {"a_pos"});
+  w->set_joint_positions("tt", {"a"}, {0.3});
+  w->step(1000);
+  EXPECT_NEAR(joint(*w, "tt", "a").position, 0.3, 1e-6);  // held 0 (the position at the switch) before the fix
+}
+
+TEST(ControllerStart, ATrajectoryControllerHoldsTheJointWhereItIsAtItsFirstUpdate) {
+  auto w = world_with("turntable.urdf", "tt");
+  RosControl& rc = manager(*w, "tt");
+  rc.load("traj", "position_controllers/JointTrajectoryController", Params{{"joints", {"a", "b"}}});
+  start(rc, {"traj"});
+  w->set_joint_positions("tt", {"a", "b"}, {0.3, -0.2});
+  w->step(1000);
+  EXPECT_NEAR(joint(*w, "tt", "a").position, 0.3, 1e-6);
+  EXPECT_NEAR(joint(*w, "tt", "b").position, -0.2, 1e-6);
+}
+
+TEST(ControllerStart, AnEffortPidPositionControllerHoldsTheJointWhereItIsAtItsFirstUpdate) {
+  auto w = world_with("turntable.urdf", "tt");
+  RosControl& rc = manager(*w, "tt");
+  rc.load("a_pid", "effort_controllers/JointPositionController",
+          Params{{"joint", {"a"}}, {"pid/p", {"100"}}, {"pid/i", {"0"}}, {"pid/d", {"10"}}});
+  start(rc, {"a_pid"});
+  w->set_joint_positions("tt", {"a"}, {0.3});
+  w->step(1000);
+  // no load: the set point is the position at starting, and the error stays 0
+  EXPECT_NEAR(joint(*w, "tt", "a").position, 0.3, 1e-6);
+}
+
+TEST(ControllerStart, ACommandSentBeforeTheFirstUpdateIsKept) {
+  // sent after the switch answered, while paused: starting() does not overwrite it (upstream's switch returns only
+  // once the controller started, so a command after it is never lost)
+  auto w = world_with("turntable.urdf", "tt");
+  RosControl& rc = manager(*w, "tt");
+  rc.load("a_pos", "position_controllers/JointPositionController", Params{{"joint", {"a"}}});
+  start(rc, {"a_pos"});
+  command(rc, "a_pos", {0.5});
+  w->step(2000);
+  EXPECT_NEAR(joint(*w, "tt", "a").position, 0.5, 1e-6);
 }
