@@ -1,4 +1,4 @@
-"""arbotix_driver for rviz-only simulation: arbotix_python's diff_controller in sim mode, per COMPAT.md.
+"""arbotix_driver for rviz-only simulation: arbotix_python's diff_controller in sim mode, per docs/TOOLS.md.
 
 Reads ~controllers/<name>/ (type diff_controller, base_width and ticks_meter required, base_frame_id, odom_frame_id,
 rate, Kp Kd Ki Ko accel_limit) and ~sim. cmd_vel sets the base velocity; the pose is integrated with Euler steps

@@ -1,4 +1,4 @@
-// Plug-in configuration resolved from the seed car's <gazebo> blocks, with defaults per COMPAT.md.
+// Plug-in configuration resolved from the seed car's <gazebo> blocks, with defaults per docs/COMPAT-spec.md.
 #include <gtest/gtest.h>
 
 #include "car_sim/plugins.hpp"

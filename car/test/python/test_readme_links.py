@@ -1,6 +1,6 @@
 """README.md is a user's manual: every relative Markdown link in it and in docs/*.md (and CHANGELOG.md) names a
-file that exists, the README stays at most 300 lines, and it carries no dates or issue numbers (those belong in
-CHANGELOG.md and docs/BENCH.md)."""
+file that exists, none of them points at a file outside the repository, the README stays at most 300 lines, and
+it carries no dates or issue numbers (those belong in CHANGELOG.md and docs/BENCH.md)."""
 import glob
 import os
 import re
@@ -61,6 +61,18 @@ def test_every_relative_link_in_the_readme_and_docs_resolves():
             checked += len(relative_links(f.read()))
     assert checked > 20, 'only %d relative links found: is the parser reading the files?' % checked
     assert not broken, 'links to files that do not exist: %s' % broken
+
+
+def test_no_document_points_outside_the_repository():
+    # a user's clone has only the repository: no /work/ checkout, no shared spec beside it
+    outside = re.compile(r'/work/|shared/spec|shared spec')
+    found = {}
+    for path in _documents():
+        with open(path, encoding='utf-8') as f:
+            lines = ['%d: %s' % (i, line.strip()) for i, line in enumerate(f, 1) if outside.search(line)]
+        if lines:
+            found[os.path.relpath(path, ROOT)] = lines
+    assert not found, 'documents that point outside the repository: %s' % found
 
 
 def test_readme_is_at_most_300_lines():

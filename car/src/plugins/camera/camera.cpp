@@ -1,5 +1,5 @@
 // The ray-cast camera (shared by the camera and depth-camera kinds) and the libgazebo_ros_camera.so kind.
-// Behaviour per docs/COMPAT.md: one focal length f = W / (2 tan(hfov / 2)), cx = (W-1)/2, cy = (H-1)/2 (fix),
+// Behaviour per docs/COMPAT-spec.md: one focal length f = W / (2 tan(hfov / 2)), cx = (W-1)/2, cy = (H-1)/2 (fix),
 // colour channels in the image format's order (fix), depth NaN outside (cutoff, cutoff_max).
 #include "camera.hpp"
 

@@ -1,6 +1,6 @@
 // libgazebo_ros_diff_drive.so (gazebo_plugins, Noetic): two wheel joints driven as velocity motors capped at
 // wheelTorque, the speed target ramped at wheelAcceleration, odometry from the world or the wheel encoders at
-// updateRate. Behaviour per docs/COMPAT.md.
+// updateRate. Behaviour per docs/COMPAT-spec.md.
 #include "diff_drive.hpp"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 // The lidar: N·r rays from min_angle to max_angle inclusive in the sensor's x-y plane, starting at range.min;
-// REP 117 readings; Gaussian noise on in-range beams, clamped to [min, max]. Behaviour per docs/COMPAT.md.
+// REP 117 readings; Gaussian noise on in-range beams, clamped to [min, max]. Behaviour per docs/COMPAT-spec.md.
 #include "laser.hpp"
 #include "ziggurat.hpp"
 
