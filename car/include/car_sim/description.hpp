@@ -93,8 +93,10 @@ std::string resolve_uri(const std::string& uri, const std::string& base_dir);  /
 // by what it names, with its <name>, <pose> and <static> (URIs by resolve_uri, relative ones against the including
 // file's folder; a model folder by its model.config; mesh URIs made absolute), at most 32 includes deep; nested
 // models hoisted to top-level models "parent::child" with composed poses (static when the parent is); the <state>
-// block's model poses applied and the block dropped. Throws LoadError naming file, element and reason.
-std::string flatten_world_file(const std::string& path);
+// block's model poses applied and the block dropped. Throws LoadError naming file, element and reason. With
+// warnings, an <include> that names nothing or resolves nowhere is left out with a warning "include-missing", as
+// the simulator leaves it out (docs/COMPAT-validation.md); without, it is an error.
+std::string flatten_world_file(const std::string& path, std::vector<Diagnostic>* warnings = nullptr);
 
 // Gazebo's empty world: a ground plane (mu 100, mu2 50) and a sun, 1 ms step.
 WorldDescription empty_world();

@@ -17,10 +17,13 @@ from car import world_tools
 
 def cmd_flatten(a) -> int:
     try:
-        text = world_tools.flatten_to_string(a.world)
+        left_out = []
+        text = world_tools.flatten_to_string(a.world, left_out)
     except world_tools.WorldError as e:
         print('world_tool: error: %s' % e, file=sys.stderr)
         return 2
+    for w in left_out:
+        print('world_tool: warning: %s: %s' % (w['element'], w['message']), file=sys.stderr)
     if a.output:
         with open(a.output, 'w', encoding='utf-8') as f:
             f.write(text)
@@ -57,7 +60,7 @@ def cmd_check(a) -> int:
 def cmd_map(a) -> int:
     from car import _core, world_map
     try:
-        desc = _core.load_world_string(world_tools.flatten_to_string(a.world), a.world)
+        desc = _core.load_world_string(world_tools.flatten_to_string(a.world, []), a.world)
         grid, origin, skipped = world_map.occupancy(desc, a.resolution, a.z_min, a.z_max)
     except (world_tools.WorldError, ValueError) as e:
         print('world_tool: error: %s' % e, file=sys.stderr)

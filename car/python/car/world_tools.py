@@ -71,9 +71,10 @@ def parse_file(path: str) -> ET.ElementTree:
     return ET.ElementTree(parser.close())
 
 
-def flatten(path: str) -> ET.ElementTree:
+def flatten(path: str, warnings: list | None = None) -> ET.ElementTree:
     """One self-contained world: includes resolved and replaced, nested models hoisted, <state> applied (the core's
-    car_sim::flatten_world_file)."""
+    car_sim::flatten_world_file). With a list for warnings, an include that resolves nowhere is left out, as the
+    simulator leaves it out, and its finding appended there; without, it is an error."""
     from car import _core
     # expat reads the file as written first: its verdicts (malformed XML, entity expansion) are the tools' messages
     try:
@@ -84,7 +85,7 @@ def flatten(path: str) -> ET.ElementTree:
         raise WorldError(path, '', 'malformed XML: %s' % e)
     try:
         # bytes in the input's encoding, which its declaration names
-        data = _core.flatten_world(path)
+        data = _core.flatten_world(path, warnings)
     except _core.LoadError as e:
         raise WorldError(e.file, e.element, e.reason)
     parser = ET.XMLParser(target=ET.TreeBuilder())
@@ -94,8 +95,8 @@ def flatten(path: str) -> ET.ElementTree:
     return tree
 
 
-def flatten_to_string(path: str) -> str:
-    return "<?xml version='1.0'?>\n" + ET.tostring(flatten(path).getroot(), encoding='unicode') + '\n'
+def flatten_to_string(path: str, warnings: list | None = None) -> str:
+    return "<?xml version='1.0'?>\n" + ET.tostring(flatten(path, warnings).getroot(), encoding='unicode') + '\n'
 
 
 # ---- check --------------------------------------------------------------------------------------------
@@ -151,7 +152,9 @@ def check(path: str, inertia_tolerance: float = 0.10) -> dict:
     findings = []
     plugins = []  # the plug-ins of world models simulated as robots
     try:
-        tree = flatten(path)
+        left_out = []
+        tree = flatten(path, left_out)
+        findings += [dict(f) for f in left_out]
     except WorldError as e:
         findings.append(_finding('error', 'world-unreadable', e.element, e.reason))
         tree = None

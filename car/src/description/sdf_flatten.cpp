@@ -141,7 +141,7 @@ void set_child(tinyxml2::XMLElement* e, const char* tag, const std::string& text
 
 class Flattener {
  public:
-  explicit Flattener(tinyxml2::XMLDocument* out) : out_(out) {}
+  Flattener(tinyxml2::XMLDocument* out, std::vector<Diagnostic>* warnings) : out_(out), warnings_(warnings) {}
 
   // Replaces every <include> below parent by what it includes, with the include's overrides.
   void expand(tinyxml2::XMLElement* parent, const std::string& base_dir, const std::string& file,
@@ -157,6 +157,11 @@ class Flattener {
         const std::string here = where + "/include[" + std::to_string(i) + "]";
         std::string body_dir, body_file;
         tinyxml2::XMLElement* body = load_included(child, base_dir, file, here, &body_dir, &body_file);
+        if (!body) {
+          parent->DeleteChild(child);
+          child = next;
+          continue;
+        }
         if (const auto name = find_text(child, "name"); name && !name->empty())
           body->SetAttribute("name", detail::trim(*name).c_str());
         if (const auto pose = find_text(child, "pose")) {
@@ -181,17 +186,29 @@ class Flattener {
   tinyxml2::XMLElement* load_included(const tinyxml2::XMLElement* include, const std::string& base_dir,
                                       const std::string& file, const std::string& where, std::string* body_dir,
                                       std::string* body_file) {
+    // one that names nothing or resolves nowhere: left out with a warning where the caller takes warnings (as the
+    // simulator does, and Gazebo 11: sdformat reports it and goes on), an error otherwise
+    auto missing = [&](const std::string& element, const std::string& why) -> tinyxml2::XMLElement* {
+      if (!warnings_) throw LoadError(file, include->GetLineNum(), element, why);
+      warnings_->push_back({Severity::Warning, "include-missing", element,
+                            why + ": left out, as Gazebo 11 leaves it out", include->GetLineNum()});
+      return nullptr;
+    };
     const std::string uri = detail::text_of(include->FirstChildElement("uri"));
-    if (uri.empty()) throw LoadError(file, include->GetLineNum(), where, "<include> has no <uri>");
+    if (uri.empty()) return missing(where, "<include> has no <uri>");
     const std::string target = resolve_uri(uri, base_dir);
     if (target.empty()) {
       std::string path;
       for (const auto& d : model_path()) path += (path.empty() ? "" : ":") + d;
-      throw LoadError(file, include->GetLineNum(), where + "/uri",
-                      "cannot find '" + uri + "' (model path: " + path + ")");
+      return missing(where + "/uri", "cannot find '" + uri + "' (model path: " + path + ")");
     }
     std::error_code ec;
-    const std::string sdf_file = std::filesystem::is_directory(target, ec) ? detail::model_sdf_file(target) : target;
+    std::string sdf_file = target;
+    if (std::filesystem::is_directory(target, ec)) try {
+        sdf_file = detail::model_sdf_file(target);
+      } catch (const LoadError& e) {
+        return missing(where + "/uri", "'" + target + "': " + e.reason());
+      }
     tinyxml2::XMLDocument doc;
     read_sdf(sdf_file, &doc);
     const tinyxml2::XMLElement* body = nullptr;
@@ -221,6 +238,7 @@ class Flattener {
   }
 
   tinyxml2::XMLDocument* out_;
+  std::vector<Diagnostic>* warnings_;  // nullptr: an include that resolves nowhere is an error
 };
 
 // Nested models become top-level models 'parent::child' with composed poses, static when the parent is (the
@@ -289,7 +307,7 @@ std::string declared_encoding(const tinyxml2::XMLDocument& doc) {
 
 }  // namespace
 
-std::string flatten_world_file(const std::string& path) {
+std::string flatten_world_file(const std::string& path, std::vector<Diagnostic>* warnings) {
   tinyxml2::XMLDocument doc;
   read_sdf(path, &doc);
   tinyxml2::XMLElement* root = doc.RootElement();
@@ -297,7 +315,7 @@ std::string flatten_world_file(const std::string& path) {
     throw LoadError(path, root ? root->GetLineNum() : 0, root ? root->Name() : "", "root element is not <sdf>");
   tinyxml2::XMLElement* world = root->FirstChildElement("world");
   if (!world) throw LoadError(path, root->GetLineNum(), "sdf", "no <world>");
-  Flattener(&doc).expand(world, folder_of(abspath(path)), path, "world[" + attr(world, "name") + "]", 0);
+  Flattener(&doc, warnings).expand(world, folder_of(abspath(path)), path, "world[" + attr(world, "name") + "]", 0);
   hoist_nested(world, path);
   apply_state(world);
   // the <sdf> element under a declaration of our own: the input's declarations, comments and unknown nodes are left

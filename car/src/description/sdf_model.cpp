@@ -6,6 +6,7 @@
 #include <sdf/sdf.hh>
 #include <tinyxml2.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -34,12 +35,37 @@ Eigen::Isometry3d to_iso(const ignition::math::Pose3d& p) {
 
 int line_of(const sdf::ElementPtr& e) { return e && e->LineNumber() ? *e->LineNumber() : 0; }
 
-void refuse_errors(const std::string& source, const sdf::Errors& all) {
-  // LINK_INERTIA_INVALID is libsdformat's DOM; Gazebo 11 reads <inertial> from the element tree and simulates
-  // such a link (ODE's rule): car's own check warns instead (inertial_warning, docs/COMPAT-validation.md "Inertia")
+void refuse_errors(const std::string& source, const sdf::Errors& all, std::vector<Diagnostic>* warnings) {
   sdf::Errors errors;
-  for (const auto& e : all)
-    if (e.Code() != sdf::ErrorCode::LINK_INERTIA_INVALID) errors.push_back(e);
+  bool inertia = false;
+  for (const auto& e : all) {
+    // LINK_INERTIA_INVALID is libsdformat's DOM; Gazebo 11 reads <inertial> from the element tree and simulates
+    // such a link (ODE's rule): car's own check warns instead (inertial_warning, docs/COMPAT-validation.md "Inertia")
+    if (e.Code() == sdf::ErrorCode::LINK_INERTIA_INVALID) {
+      inertia = true;
+      continue;
+    }
+    // an <include> that resolves nowhere: sdformat (9 as 12) reports it and goes on without that model, and Gazebo
+    // 11 loads the rest (docs/COMPAT-validation.md)
+    const bool include = e.Code() == sdf::ErrorCode::URI_LOOKUP ||
+                         (e.Code() == sdf::ErrorCode::ATTRIBUTE_MISSING &&
+                          e.Message() == "<include> element missing 'uri' attribute");
+    if (include && warnings) {
+      std::string dirs;
+      for (const auto& d : model_path()) dirs += (dirs.empty() ? "" : ":") + d;
+      warnings->push_back({Severity::Warning, "include-missing", e.XmlPath() ? *e.XmlPath() : "include",
+                           e.Message() + " (model path: " + dirs + "): left out, as Gazebo 11 leaves it out",
+                           e.LineNumber() ? *e.LineNumber() : 0});
+      continue;
+    }
+    errors.push_back(e);
+  }
+  // a world whose only trouble was an inertia is kept by libsdformat all the same; its "Failed to load a world."
+  // says no more than the inertia errors did
+  if (inertia)
+    errors.erase(std::remove_if(errors.begin(), errors.end(),
+                                [](const sdf::Error& e) { return e.Message() == "Failed to load a world."; }),
+                 errors.end());
   if (errors.empty()) return;
   const sdf::Error& e = errors.front();
   std::string reason = e.Message();
@@ -318,7 +344,7 @@ SdfRobot convert_sdf_model(const sdf::Model& sm, const std::string& source, cons
     ignition::math::Pose3d cp;
     const sdf::Errors e = parent == "world" ? sm.LinkByName(child)->SemanticPose().Resolve(cp)
                                             : sm.LinkByName(child)->SemanticPose().Resolve(cp, parent);
-    refuse_errors(source, e);
+    refuse_errors(source, e, nullptr);
     j.origin = to_iso(cp);
     // rule 6: the joint frame in the child link; car's joint frame is the child's
     ignition::math::Pose3d jp;
@@ -446,27 +472,6 @@ bool is_sdf_document(const std::string& xml) {
 
 namespace {
 
-// Rule 13: a model:// include that resolves nowhere names the model and every folder searched.
-void check_includes(const tinyxml2::XMLElement* e, const std::string& source, const std::string& base_dir) {
-  for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
-    if (std::string(c->Name()) == "include") {
-      const tinyxml2::XMLElement* u = c->FirstChildElement("uri");
-      const std::string uri = u && u->GetText() ? detail::trim(u->GetText()) : "";
-      if (!uri.empty() && resolve_uri(uri, base_dir).empty()) {
-        std::string dirs;
-        if (uri.rfind("model://", 0) == 0)
-          for (const auto& d : model_path()) dirs += (dirs.empty() ? "" : ", ") + d;
-        throw LoadError(source, u->GetLineNum(), "include/uri",
-                        uri.rfind("model://", 0) == 0
-                            ? "model '" + uri.substr(8, uri.find('/', 8) - 8) + "' not found in GAZEBO_MODEL_PATH "
-                                  "and car's models/ (searched: " + dirs + ")"
-                            : "'" + uri + "' not found");
-      }
-    }
-    check_includes(c, source, base_dir);
-  }
-}
-
 }  // namespace
 
 SdfRobot load_sdf_model_string(const std::string& xml, const std::string& source_name, const LoadOptions& options,
@@ -479,7 +484,6 @@ SdfRobot load_sdf_model_string(const std::string& xml, const std::string& source
     throw LoadError(source_name, root ? root->GetLineNum() : 0, root ? root->Name() : "",
                     "root element is not <sdf>; is this an SDF model?");
   detail::check_sdf_version(root, source_name);
-  check_includes(root, source_name, base_dir);
   // every number finite and every sensor within its limits, in the text and each file it includes (validate.hpp)
   detail::prevalidate_sdf(xml, source_name, base_dir);
   sdf::Root sroot;
@@ -492,12 +496,18 @@ SdfRobot load_sdf_model_string(const std::string& xml, const std::string& source
   } catch (const std::exception& e) {
     throw LoadError(source_name, 0, "sdf", std::string("libsdformat failed: ") + e.what());
   }
-  refuse_errors(source_name, errors);
+  std::vector<Diagnostic> warnings;
+  refuse_errors(source_name, errors, &warnings);
   const sdf::Model* model = sroot.Model();
   Eigen::Isometry3d world_pose = Eigen::Isometry3d::Identity();
   if (!model && sroot.WorldCount() > 0) {
     const sdf::World* w = sroot.WorldByIndex(0);
-    if (w->ModelCount() == 0) throw LoadError(source_name, 0, "sdf/world", "the world holds no model to spawn");
+    // nothing to spawn: an include that resolved nowhere says why (spawn_model -database)
+    if (w->ModelCount() == 0)
+      throw warnings.empty() ? LoadError(source_name, 0, "sdf/world", "the world holds no model to spawn")
+                             : LoadError(source_name, warnings[0].line, warnings[0].element,
+                                         warnings[0].message.substr(0, warnings[0].message.find(": left out")) +
+                                             "; the world holds no model to spawn");
     model = w->ModelByIndex(0);
     ignition::math::Pose3d p;
     model->SemanticPose().Resolve(p);
@@ -506,6 +516,7 @@ SdfRobot load_sdf_model_string(const std::string& xml, const std::string& source
   }
   if (!model) throw LoadError(source_name, root->GetLineNum(), "sdf", "no <model> in the document");
   SdfRobot r = detail::convert_sdf_model(*model, source_name, options);
+  r.model.diagnostics.insert(r.model.diagnostics.begin(), warnings.begin(), warnings.end());
   r.root_pose = world_pose * r.root_pose;
   return r;
 }

@@ -23,8 +23,9 @@ int line_of(const sdf::ElementPtr& e);
 
 // sdformat's first error as a LoadError (with how many more there were); returns when there is none. An error
 // inside an included file names that file; one in the text itself names source (sdformat calls such text
-// "data-string"). LINK_INERTIA_INVALID is not one: Gazebo 11 loads such a link (car warns).
-void refuse_errors(const std::string& source, const sdf::Errors& errors);
+// "data-string"). Not errors, as Gazebo 11 loads the model or world: LINK_INERTIA_INVALID (car warns itself) and,
+// with warnings given, an <include> that resolves nowhere (a warning "include-missing"; the rest loads).
+void refuse_errors(const std::string& source, const sdf::Errors& errors, std::vector<Diagnostic>* warnings);
 
 // Rule 9: box, cylinder, sphere, mesh, plane as a Shape (origin identity); anything else is nullopt with a warning
 // at `where` (line: its line, 0 = unknown) appended to *diagnostics.

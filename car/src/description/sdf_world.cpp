@@ -284,8 +284,10 @@ WorldDescription load_world_file(const std::string& path) {
   } catch (const std::exception& e) {
     throw LoadError(path, 0, "sdf", std::string("libsdformat failed: ") + e.what());
   }
-  refuse_errors(path, errors);
+  std::vector<Diagnostic> warnings;
+  refuse_errors(path, errors, &warnings);
   WorldDescription d = convert(root, path);
+  d.diagnostics.insert(d.diagnostics.begin(), warnings.begin(), warnings.end());
   load_meshes(&d, path.find('/') == std::string::npos ? "." : path.substr(0, path.rfind('/')));
   return d;
 }
@@ -300,8 +302,10 @@ WorldDescription load_world_string(const std::string& xml, const std::string& so
   } catch (const std::exception& e) {
     throw LoadError(source_name, 0, "sdf", std::string("libsdformat failed: ") + e.what());
   }
-  refuse_errors(source_name, errors);
+  std::vector<Diagnostic> warnings;
+  refuse_errors(source_name, errors, &warnings);
   WorldDescription d = convert(root, source_name);
+  d.diagnostics.insert(d.diagnostics.begin(), warnings.begin(), warnings.end());
   load_meshes(&d, "");
   return d;
 }

@@ -407,15 +407,11 @@ void check_includes(const tinyxml2::XMLElement* root, const std::string& source,
     todo.pop_back();
     for (const tinyxml2::XMLElement* c = e->LastChildElement(); c; c = c->PreviousSiblingElement()) todo.push_back(c);
     if (std::string(e->Name()) != "include") continue;
+    // one that names nothing, resolves nowhere, or names a folder without a model.config is left to sdformat,
+    // which reports it and goes on without it, as Gazebo 11 does (a warning: refuse_errors)
     const std::string uri = text_of(e->FirstChildElement("uri"));
-    if (uri.empty()) throw LoadError(source, e->GetLineNum(), sdf_path(e), "<include> has no <uri>");
-    const std::string found = resolve_uri(uri, base_dir);
-    if (found.empty()) {
-      std::string path;
-      for (const auto& d : model_path()) path += (path.empty() ? "" : ":") + d;
-      throw LoadError(source, e->GetLineNum(), sdf_path(e) + "/uri",
-                      "cannot find '" + uri + "' (model path: " + path + ")");
-    }
+    const std::string found = uri.empty() ? "" : resolve_uri(uri, base_dir);
+    if (found.empty()) continue;
     std::error_code ec;
     std::string file = found;
     if (std::filesystem::is_directory(found, ec)) try {
@@ -423,7 +419,7 @@ void check_includes(const tinyxml2::XMLElement* root, const std::string& source,
       } catch (const LoadError&) {
         file.clear();
       }
-    if (file.empty()) throw LoadError(source, e->GetLineNum(), sdf_path(e) + "/uri", "'" + found + "' has no model.config naming an SDF file");
+    if (file.empty()) continue;
     const std::string canon = std::filesystem::weakly_canonical(file, ec).string();
     for (const auto& f : *chain)
       if (f == canon) {

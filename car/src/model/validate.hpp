@@ -61,8 +61,9 @@ bool degenerate_shape(const Shape& s);
 // Drops a robot's degenerate collisions (the validator warned about them), before lumping.
 void drop_degenerate_collisions(RobotModel* m);
 
-// SDF text before sdformat reads it: DTD entities refused, every numeric element finite, and every <include>
-// found, acyclic and at most limits::kIncludeDepthMax deep (each included file checked the same way). base_dir:
+// SDF text before sdformat reads it: DTD entities refused, every numeric element finite, every sensor within its
+// limits, and every <include> that resolves acyclic and at most limits::kIncludeDepthMax deep (each included file
+// checked the same way; one that resolves nowhere is sdformat's to report, a warning). base_dir:
 // where relative URIs resolve ("" for text). Throws LoadError naming file, line, element and reason.
 void prevalidate_sdf(const std::string& xml, const std::string& source, const std::string& base_dir);
 // <sdf version="..."> must be digits and dots ("1.6"): libsdformat throws std::invalid_argument on others (found by

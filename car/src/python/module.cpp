@@ -480,10 +480,14 @@ PYBIND11_MODULE(_core, m) {
   // The world flattener (world_tool): LoadError with the error's parts as attributes file, element and reason.
   m.def(
       "flatten_world",
-      [m](const std::string& path) {
+      [m](const std::string& path, py::object warnings) {
         try {
-          // bytes: the text keeps the input's encoding, named in its declaration
-          return py::bytes(flatten_world_file(path));
+          // bytes: the text keeps the input's encoding, named in its declaration. With a list for warnings, an
+          // include that resolves nowhere is left out and its warning appended there (as the simulator does).
+          std::vector<Diagnostic> found;
+          py::bytes out(flatten_world_file(path, warnings.is_none() ? nullptr : &found));
+          for (const auto& d : found) warnings.attr("append")(diagnostic(d));
+          return out;
         } catch (const LoadError& e) {
           py::object type = m.attr("LoadError");
           py::object err = type(e.what());
@@ -494,7 +498,7 @@ PYBIND11_MODULE(_core, m) {
           throw py::error_already_set();
         }
       },
-      py::arg("path"),
+      py::arg("path"), py::arg("warnings") = py::none(),
       "A world file as one self-contained SDF text (bytes, in the encoding its declaration names): includes expanded (the loader's include rule, at most 32 deep), "
       "nested models hoisted as 'parent::child', <state> applied. Raises LoadError (with file, element, reason).");
 

@@ -93,7 +93,7 @@ class SdfDatabase(unittest.TestCase):
     def test_missing_model_names_the_paths_searched(self):
         r = spawn('-sdf', '-database', 'no_such_bot', '-model', 'nobody')
         self.assertNotEqual(r.returncode, 0)
-        self.assertIn("model 'no_such_bot' not found", r.stdout)
+        self.assertIn('Unable to find uri[model://no_such_bot]', r.stdout)
         self.assertIn(DATA + '/models', r.stdout)
 
 

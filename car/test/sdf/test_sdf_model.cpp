@@ -316,21 +316,6 @@ TEST(SdfModel, DatabaseIncludeResolvesThroughGazeboModelPath) {
   unsetenv("GAZEBO_MODEL_PATH");
 }
 
-TEST(SdfModel, MissingDatabaseModelNamesThePathsSearched) {
-  setenv("GAZEBO_MODEL_PATH", "/nonexistent/models", 1);
-  try {
-    load_sdf_model_string(
-        "<sdf version='1.4'><world name='default'><include><uri>model://no_such_bot</uri></include></world></sdf>",
-        "-database");
-    FAIL();
-  } catch (const LoadError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("no_such_bot"), std::string::npos) << what;
-    EXPECT_NE(what.find("/nonexistent/models"), std::string::npos) << what;
-  }
-  unsetenv("GAZEBO_MODEL_PATH");
-}
-
 // A link's <gravity>false</gravity> holds also when one of its collisions has a <surface> (the surface used to
 // replace the link's whole record, its gravity switch with it).
 TEST(SdfModel, GravityOffSurvivesACollisionSurface) {
