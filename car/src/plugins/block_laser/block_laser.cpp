@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-#include "../laser/laser.hpp"
+#include "../common/ray_sensor.hpp"
 
 namespace car_sim {
 

@@ -3,7 +3,7 @@
 // Behaviour per docs/COMPAT-sensors.md.
 #include "depth_camera.hpp"
 
-#include "../camera/camera.hpp"
+#include "../common/camera_render.hpp"
 
 namespace car_sim {
 

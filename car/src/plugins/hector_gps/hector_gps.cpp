@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "../hector_common/sensor_model.hpp"
+#include "../common/hector_sensor_model.hpp"
 
 namespace car_sim {
 

@@ -2,7 +2,7 @@
 // motion through hector's accel, rate and yaw SensorModels, and the current biases.
 #pragma once
 
-#include "../imu/imu.hpp"
+#include "../common/sensor_outputs.hpp"
 #include "car_sim/plugin.hpp"
 
 namespace car_sim {

@@ -7,9 +7,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "../hector_common/sensor_model.hpp"
-#include "../laser/laser.hpp"
-#include "../range/range.hpp"
+#include "../common/hector_sensor_model.hpp"
+#include "../common/ray_sensor.hpp"
+#include "../common/sensor_outputs.hpp"
 
 namespace car_sim {
 

@@ -94,21 +94,6 @@ void finish(ResolveContext& ctx) {
 
 }  // namespace
 
-void ImuOut::visit(FieldVisitor& v) const {
-  const double q[4] = {orientation.x(), orientation.y(), orientation.z(), orientation.w()};
-  v.vector("orientation", q, 4);
-  v.vector("angular_velocity", angular_velocity.data(), 3);
-  v.vector("linear_acceleration", linear_acceleration.data(), 3);
-}
-
-std::vector<OutputPort> imu_ports(const PluginConfig& c, const std::string& robot, const Environment&) {
-  OutputPort p = sensor_port(c, robot, "imu", SampleType::Imu, "topicName", c.text("frameName"), 1);
-  const double variance = std::pow(c.number("gaussianNoise"), 2);
-  p.orientation_covariance.fill(variance);
-  p.angular_velocity_covariance.fill(variance);
-  p.linear_acceleration_covariance.fill(variance);
-  return std::vector<OutputPort>{p};
-}
 
 const PluginKind& imu_kind() {
   static const PluginKind k = [] {

@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "imu/imu.hpp"
+#include "../common/sensor_outputs.hpp"
 
 namespace car_sim {
 

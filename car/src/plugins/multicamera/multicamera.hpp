@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "../camera/camera.hpp"
+#include "../common/camera_render.hpp"
 #include "car_sim/plugin.hpp"
 
 namespace car_sim {

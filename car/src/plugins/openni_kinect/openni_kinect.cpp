@@ -1,7 +1,7 @@
 // The Kinect: the shared ray-cast camera with depth; its outputs are camera frames (CameraOut with depth).
 #include "openni_kinect.hpp"
 
-#include "../camera/camera.hpp"
+#include "../common/camera_render.hpp"
 
 namespace car_sim {
 

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "../laser/laser.hpp"
+#include "../common/ray_sensor.hpp"
 
 namespace car_sim {
 
@@ -65,13 +65,6 @@ void finish(ResolveContext& ctx) {
 
 }  // namespace
 
-void RangeOut::visit(FieldVisitor& v) const {
-  v.integer("radiation_type", radiation);
-  v.number("field_of_view", field_of_view);
-  v.number("min_range", min_range);
-  v.number("max_range", max_range);
-  v.number("range", range);
-}
 
 const PluginKind& range_kind() {
   static const PluginKind k = [] {

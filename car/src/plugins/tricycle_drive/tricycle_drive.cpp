@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "diff_drive/diff_drive.hpp"
+#include "../common/drive.hpp"
 
 namespace car_sim {
 

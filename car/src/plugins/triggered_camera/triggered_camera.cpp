@@ -3,7 +3,7 @@
 // trigger is used up whether or not anyone takes the frame.
 #include "triggered_camera.hpp"
 
-#include "../camera/camera.hpp"
+#include "../common/camera_render.hpp"
 
 namespace car_sim {
 
@@ -34,7 +34,7 @@ class TriggeredCamera : public CameraPlugin, public CameraTrigger {
 
 const PluginKind& triggered_camera_kind() {
   static const PluginKind k = [] {
-    PluginKind k = camera_kind();
+    PluginKind k = camera_kind_record();
     k.name = "triggered_camera";
     k.filenames = {"libgazebo_ros_triggered_camera.so"};
     k.namespace_rule = NamespaceRule::EmptyIsModel;  // GetRobotNamespace (gazebo_ros_camera_utils.cpp)
