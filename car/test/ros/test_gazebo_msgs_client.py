@@ -124,9 +124,16 @@ class GazeboMsgsClientTest(unittest.TestCase):
         self.assertAlmostEqual(self.gz.position('box').z, 10.0 - 9.8 * 1e-6 * n * (n + 1) / 2, places=6)
         self.assertTrue(self.gz.teleport('box', 2.0, 0.0, 0.1).success)
         self.assertAlmostEqual(self.gz.position('box').x, 2.0, places=9)
-        # paused: time stands still
+        # paused: time stands still. The event, not a while: while paused car repeats the paused time on /clock at
+        # 10 Hz of wall time (docs/COMPAT.md), so three /clock messages sent after this subscription connected span
+        # 0.2 s or more of wall time, at rtf 1 as many ms of sim time had the world been running
         t = self.gz.world().sim_time
-        time.sleep(0.3)
+        clocks = []
+        sub = simtest.receive_all(rospy.Subscriber('/clock', Clock, lambda m: clocks.append(m.clock.to_sec())))
+        simtest.wait_publisher(sub)
+        simtest.wait_for('three /clock messages while paused', lambda: len(clocks) >= 3)
+        sub.unregister()
+        self.assertEqual(set(clocks), {t})
         self.assertEqual(self.gz.world().sim_time, t)
         # reset_simulation: time 0, the box back where it was spawned
         self.gz.reset_simulation()
