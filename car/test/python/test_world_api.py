@@ -37,7 +37,13 @@ def test_seed_command_drives_a_circle_of_radius_v_over_w(car_xml):
         w.step(10)
         points.append(w.model_state('mycar')['position'][:2])
     _, radius = fit_circle(points)
-    assert radius == pytest.approx(1.0, abs=0.05)  # r = v / w
+    # r = v / w = 1 m, to 1 mm: two driven wheels that do not slip go exactly v / w. They do not slip: the turn asks
+    # v^2 / r = 1 m/s^2 sideways, the tyres' mu 1 holds 9.8 m/s^2, and the ball casters carry no friction
+    # (docs/COMPAT-physics.md); what is left is the velocity motors' solver residual, and their angle anchor keeps
+    # each wheel within 0.02 rad of the angle its target speed integrates to, 0.65 mm at the 0.0325 m rim
+    # (measured: 0.9999 m, points within 0.65 mm of the circle). A 4 % wrong wheel separation turns at 1.04 w:
+    # 0.9615 m, 38 mm off.
+    assert radius == pytest.approx(1.0, abs=0.001)
     assert math.dist(points[-1], start[:2]) < 0.10
 
 

@@ -46,7 +46,13 @@ class DriveTest(unittest.TestCase):
         msgs = self.truth.until(t0 + lap + 0.1)
         points = [xy(m) for m in msgs if t0 <= m.header.stamp.to_sec() <= t0 + lap]
         _, radius = fit_circle(points)
-        self.assertAlmostEqual(radius, 1.0, delta=0.05)  # r = v / w
+        # r = v / w = 1 m, to 1 mm: two driven wheels that do not slip go exactly v / w. They do not slip: the turn
+        # asks v^2 / r = 1 m/s^2 sideways, the tyres' mu 1 holds 9.8 m/s^2, and the ball casters carry no friction
+        # (docs/COMPAT-physics.md); what is left is the velocity motors' solver residual, and their angle anchor
+        # keeps each wheel within 0.02 rad of the angle its target speed integrates to, 0.65 mm at the 0.0325 m rim
+        # (the same run in the Python API: 0.9999 m, test_world_api.py). A 4 % wrong wheel separation turns at
+        # 1.04 w: 0.9615 m, 38 mm off.
+        self.assertAlmostEqual(radius, 1.0, delta=0.001)
         self.assertLess(math.dist(xy(at_time(msgs, t0)), xy(at_time(msgs, t0 + lap))), 0.10)
 
     def test_straight_ramp_covers_the_expected_distance(self):

@@ -15,8 +15,8 @@ from rosgraph_msgs.msg import Clock
 
 # ---- the client, as a gazebo_ros user writes it ---------------------------------------------------------------
 from gazebo_msgs.msg import ModelState
-from gazebo_msgs.srv import (DeleteModel, GetJointProperties, GetModelState, GetWorldProperties, SetModelState,
-                             SpawnModel)
+from gazebo_msgs.srv import (DeleteModel, GetJointProperties, GetModelState, GetPhysicsProperties, GetWorldProperties,
+                             SetModelState, SpawnModel)
 from geometry_msgs.msg import Pose, Point, Quaternion
 from std_srvs.srv import Empty
 
@@ -48,6 +48,7 @@ class GazeboClient:
         self.unpause = rospy.ServiceProxy('/gazebo/unpause_physics', Empty)
         self.reset_simulation = rospy.ServiceProxy('/gazebo/reset_simulation', Empty)
         self.world = rospy.ServiceProxy('/gazebo/get_world_properties', GetWorldProperties)
+        self.physics = rospy.ServiceProxy('/gazebo/get_physics_properties', GetPhysicsProperties)
 
     def spawn_box(self, name, x, y, z):
         pose = Pose(position=Point(x, y, z), orientation=Quaternion(0, 0, 0, 1))
@@ -66,14 +67,29 @@ class GazeboClient:
         return self.get_model_state(model_name=name, relative_entity_name='world').pose.position
 
     def step_until(self, t):
+        """Runs to sim time t and pauses there. car's ~pause_at (docs/COMPAT-dropins.md "Pause at") makes the
+        simulator pause itself after the first step at or after t, however late this process would see t go by; a
+        client of Gazebo itself would pause after seeing it on /clock, late by its own reaction time."""
+        rospy.set_param('/gazebo/pause_at', t)
         self.unpause()
         # the bound is wall time against a hang; running out of it fails
         deadline = time.time() + 120
-        while self.world().sim_time < t:
+        while not (self.physics().pause and self.world().sim_time >= t):
             if time.time() > deadline:
-                raise AssertionError('sim time %.3f s not reached within 120 s (at %.3f s)' % (t, self.world().sim_time))
+                raise AssertionError('paused at sim time %.3f s: not within 120 s (at %.3f s)' % (t, self.world().sim_time))
             time.sleep(0.01)
-        self.pause()
+
+
+def subscriber_connected(node, topic, prefix):
+    """Whether NODE has a connection that sends TOPIC to a subscriber whose name starts with PREFIX (the node's
+    getBusInfo, ROS's slave API: [id, peer, direction, transport, topic, connected, ...] per connection)."""
+    import xmlrpc.client
+
+    import rosgraph
+    import rosnode
+    uri = rosnode.get_api_uri(rosgraph.Master(rospy.get_name()), node)
+    _, _, info = xmlrpc.client.ServerProxy(uri).getBusInfo(rospy.get_name())
+    return any(c[2] == 'o' and c[4] == topic and c[1].startswith(prefix) and c[5] for c in info)
 
 
 class GazeboMsgsClientTest(unittest.TestCase):
@@ -101,16 +117,23 @@ class GazeboMsgsClientTest(unittest.TestCase):
         self.assertTrue(self.gz.spawn_box('box', 0.5, 0.0, 10.0).success)
         self.assertAlmostEqual(self.gz.position('box').z, 10.0, places=9)
         # falls freely while running (it would reach the ground after 1.4 s): z = 10 - g dt^2 n (n + 1) / 2 at
-        # step n (symplectic Euler), g = 9.8, dt = 0.001
+        # step n (symplectic Euler), g = 9.8, dt = 0.001; paused by ~pause_at after step 100 exactly
         self.gz.step_until(0.1)
         n = round(self.gz.world().sim_time / 0.001)
-        self.assertLess(n, 1400)
+        self.assertEqual(n, 100)
         self.assertAlmostEqual(self.gz.position('box').z, 10.0 - 9.8 * 1e-6 * n * (n + 1) / 2, places=6)
         self.assertTrue(self.gz.teleport('box', 2.0, 0.0, 0.1).success)
         self.assertAlmostEqual(self.gz.position('box').x, 2.0, places=9)
-        # paused: time stands still
+        # paused: time stands still. The event, not a while: while paused car repeats the paused time on /clock at
+        # 10 Hz of wall time (docs/COMPAT.md), so three /clock messages sent after this subscription connected span
+        # 0.2 s or more of wall time, at rtf 1 as many ms of sim time had the world been running
         t = self.gz.world().sim_time
-        time.sleep(0.3)
+        clocks = []
+        sub = simtest.receive_all(rospy.Subscriber('/clock', Clock, lambda m: clocks.append(m.clock.to_sec())))
+        simtest.wait_publisher(sub)
+        simtest.wait_for('three /clock messages while paused', lambda: len(clocks) >= 3)
+        sub.unregister()
+        self.assertEqual(set(clocks), {t})
         self.assertEqual(self.gz.world().sim_time, t)
         # reset_simulation: time 0, the box back where it was spawned
         self.gz.reset_simulation()
@@ -181,10 +204,17 @@ class GazeboMsgsClientTest(unittest.TestCase):
                                 stdin=subprocess.PIPE, text=True)
         proc.stdin.write(BOX_URDF)
         proc.stdin.close()
-        self.gz.unpause()
-        time.sleep(2.0)
+        # events, not a while: the simulator has connected to this spawn_model's /gazebo/model_states subscription
+        # (its name: spawn_model_PID_..., rospy's anonymous name), and then sent it 1 s of sim time of model states
+        # (100 Hz: 100 messages, none naming 'late'): still waiting, nothing spawned
+        simtest.wait_for('/gazebo connected to spawn_model (pid %d) on /gazebo/model_states' % proc.pid,
+                         lambda: proc.poll() is not None or subscriber_connected(
+                             '/gazebo', '/gazebo/model_states', '/spawn_model_%d_' % proc.pid))
+        self.assertIsNone(proc.poll())
+        self.gz.step_until(self.gz.world().sim_time + 1.0)
         self.assertNotIn('box', self.gz.world().model_names)
         self.assertIsNone(proc.poll())
+        self.gz.unpause()
         self.assertTrue(self.gz.spawn_box('late', 3.0, 3.0, 0.1).success)
         self.assertEqual(proc.wait(timeout=60), 0)
         self.gz.pause()

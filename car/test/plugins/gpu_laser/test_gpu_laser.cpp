@@ -49,12 +49,22 @@ TEST(GpuLaser, GpuRaySensorIsTheLaserKindAndScansTheSame) {
 
 // RayPlugin::Load throws on a GpuRaySensor: the model loads without the plug-in.
 TEST(GpuLaser, LaserFileOnAGpuRaySensorDoesNotLoad) {
-  EXPECT_EQ(not_loaded_on("gpu_ray", "<plugin name='p' filename='libgazebo_ros_laser.so'/>"),
+  const std::string plugin = "<plugin name='p' filename='libgazebo_ros_laser.so'/>";
+  EXPECT_EQ(not_loaded_on("gpu_ray", plugin),
             "libgazebo_ros_laser.so needs a sensor of type ray, not 'gpu_ray'; the plug-in is not loaded");
+  // and absent, not only reported: nothing resolved, so the world runs no laser kind for it; the same element on a
+  // ray sensor loads (the check is not empty for another reason)
+  EXPECT_EQ(loaded_kinds_on("gpu_ray", plugin), std::vector<std::string>{});
+  EXPECT_EQ(loaded_kinds_on("ray", plugin), std::vector<std::string>{"laser"});
 }
 
 // GpuRayPlugin::Load throws on a RaySensor: the model loads without the plug-in.
 TEST(GpuLaser, GpuFileOnARaySensorDoesNotLoad) {
-  EXPECT_EQ(not_loaded_on("ray", "<plugin name='p' filename='libgazebo_ros_gpu_laser.so'/>"),
+  const std::string plugin = "<plugin name='p' filename='libgazebo_ros_gpu_laser.so'/>";
+  EXPECT_EQ(not_loaded_on("ray", plugin),
             "libgazebo_ros_gpu_laser.so needs a sensor of type gpu_ray, not 'ray'; the plug-in is not loaded");
+  // and absent, not only reported: nothing resolved, so the world runs no laser kind for it; the same element on a
+  // gpu_ray sensor loads (the check is not empty for another reason)
+  EXPECT_EQ(loaded_kinds_on("ray", plugin), std::vector<std::string>{});
+  EXPECT_EQ(loaded_kinds_on("gpu_ray", plugin), std::vector<std::string>{"laser"});
 }

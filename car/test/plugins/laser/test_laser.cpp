@@ -87,8 +87,14 @@ TEST(Lidar, EveryBeamIsTheAnalyticDistanceWithoutNoise) {
   }
 }
 
-// Gaussian noise of stddev 0.01 m: every beam within 5 sigma (360 beams all fall within 4 sigma only 98 % of the
-// time), the spread as configured, no bias.
+// Gaussian noise of stddev sigma = 0.01 m on n = 360 beams (world seed fixed: the same draw every run; the bands
+// say how often another seed would fail):
+// - every beam within 5 sigma: P(|z| > 5) = 5.7e-7 a beam, 2e-4 a scan (4 sigma would fail 2 % of scans);
+// - noise on more than 340 beams: a noisy beam lands within 1e-6 m of the truth with probability 8e-5;
+// - no bias: the mean's sigma is sigma / sqrt(n) = 0.53 mm, the band 4 of them (2.1 mm; P 6e-5), far above the
+//   0.1 mm the analytic ranges and float32 leave; a bias of one sigma (0.01 m) is 19 of them;
+// - the spread: the standard deviation estimate's sigma is about sigma / sqrt(2 n) = 0.37 mm, the band 2 mm (20 % of
+//   sigma) is 5.4 of them: this seed reads 0.0099 m, and a spread 20 % off (0.012 m) fails.
 TEST(Lidar, NoiseIsGaussianWithTheConfiguredSpread) {
   auto w = world_with_car(true, 0.5, -0.5, 0.3);
   const LaserScanOut s = one_scan(*w);
@@ -171,27 +177,33 @@ TEST(Lidar, ZigguratSamplesTheStandardNormal) {
   for (int i = 0; i < 1000; ++i) ASSERT_EQ(z.standard(a), z.standard(b));
 }
 
-// Several vertical rows (3 x 3 rays over +-0.1 rad both ways, 0.1 m ahead of the cube's centre and 0.4 m above it,
-// facing a wall whose face is the plane x = 2.0 m): Gazebo's RaySensor scans every row, index j * 3 + i, and
-// gazebo_ros_laser copies all nine ranges into the LaserScan, whose angles stay the horizontal ones. Ray (i, j) at
-// yaw h_i and pitch v_j meets the plane at 1.9 / (cos v_j cos h_i) m.
+// Several vertical rows: Gazebo's RaySensor scans every row, index j * 3 + i (rows outer), and gazebo_ros_laser
+// copies all nine ranges into the LaserScan, whose angles stay the horizontal ones. The layout is observable: the
+// 3 x 3 rays have yaws h_i = 0, 0.2, 0.4 rad and pitches v_j = -0.2, -0.1, 0 rad (different spans, neither
+// symmetric about 0), from 0.1 m ahead of the cube's centre and 0.4 m above it (z = 0.5 m), facing a wall whose
+// face is the plane x = 2.0 m and which spans only y in [-0.1, 2.0] m and z in [0, 0.55] m. Ray (i, j) meets it at
+// 1.9 / (cos v_j cos h_i) m (to 1.9 tan 0.4 = 0.80 m left and 1.9 tan 0.2 = 0.39 m down). So columns outer
+// (index i * 3 + j) puts cos 0.2 where cos 0.1 belongs (ray 1: 1.9 / (cos 0.2 cos 0.2) = 1.978 m against
+// 1.9 / (cos 0.1 cos 0) = 1.910 m), a reversed order swaps cos 0 and cos 0.4 (0.17 m), and a mirrored axis misses
+// the wall: yaw -0.2 passes its edge at y = -0.1 m (y = -0.39 m), pitch +0.1 its top (z = 0.69 m). 1e-4 m: float32
+// directions and ranges (as for the single row above).
 TEST(Lidar, SeveralRowsGiveEveryRayRowsOuter) {
   const std::string sensor = ray_sensor(
-      "ray", "lidar", "0.1 0 0.4 0 0 0", scan_axis(3, -0.1, 0.1), scan_axis(3, -0.1, 0.1), 0.05, 5.0,
+      "ray", "lidar", "0.1 0 0.4 0 0 0", scan_axis(3, 0.0, 0.4), scan_axis(3, -0.2, 0.0), 0.05, 5.0,
       "<plugin name='lidar' filename='libgazebo_ros_laser.so'><topicName>scan</topicName></plugin>");
-  auto w = world_with_cube(ray_world(box_model("wall", 2.1, 0, 0.5, 0.2, 4, 1)), sensor);
+  auto w = world_with_cube(ray_world(box_model("wall", 2.1, 0.95, 0.275, 0.2, 2.1, 0.55)), sensor);
   w->set_sensor_active("cube", "lidar", true);
   w->step(200);
   const auto scans = w->take_outputs<LaserScanOut>();
   ASSERT_FALSE(scans.empty());
   const LaserScanOut& s = scans.back();
-  EXPECT_FLOAT_EQ(s.angle_min, -0.1f);
-  EXPECT_FLOAT_EQ(s.angle_max, 0.1f);
-  EXPECT_FLOAT_EQ(s.angle_increment, 0.1f);
+  EXPECT_FLOAT_EQ(s.angle_min, 0.0f);
+  EXPECT_FLOAT_EQ(s.angle_max, 0.4f);
+  EXPECT_FLOAT_EQ(s.angle_increment, 0.2f);
   ASSERT_EQ(s.ranges.size(), 9u);
   ASSERT_EQ(s.intensities.size(), 9u);
-  const double a[3] = {-0.1, 0.0, 0.1};
+  const double h[3] = {0.0, 0.2, 0.4}, v[3] = {-0.2, -0.1, 0.0};
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 3; ++i)
-      EXPECT_NEAR(s.ranges[j * 3 + i], 1.9 / (std::cos(a[j]) * std::cos(a[i])), 1e-4) << "ray " << i << ", row " << j;
+      EXPECT_NEAR(s.ranges[j * 3 + i], 1.9 / (std::cos(v[j]) * std::cos(h[i])), 1e-4) << "ray " << i << ", row " << j;
 }

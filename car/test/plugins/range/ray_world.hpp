@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "car_sim/world.hpp"
 #include "test_util.hpp"
@@ -63,13 +64,26 @@ inline std::string scan_axis(int samples, double min_angle, double max_angle) {
          std::to_string(min_angle) + "</min_angle><max_angle>" + std::to_string(max_angle) + "</max_angle>";
 }
 
-// The message of the plugin-not-loaded diagnostic when the cube carries `plugin` (a <plugin> element) on a 3 x 3
-// sensor of `type`; "" when it loads.
-inline std::string not_loaded_on(const std::string& type, const std::string& plugin) {
-  const ModelConfig c = resolve_plugins(load_urdf_string(
+// The plug-ins resolved (and their diagnostics) when the cube carries `plugin` (a <plugin> element) on a 3 x 3
+// sensor of `type`.
+inline ModelConfig resolved_on(const std::string& type, const std::string& plugin) {
+  return resolve_plugins(load_urdf_string(
       cube_robot(ray_sensor(type, "s", "0 0 0.2 0 0 0", scan_axis(3, -0.1, 0.1), scan_axis(3, -0.1, 0.1), 0.05, 3.0,
                             plugin)),
       "cube"));
+}
+
+// The kinds of the plug-ins resolved_on(type, plugin) loads: empty when the plug-in is not loaded.
+inline std::vector<std::string> loaded_kinds_on(const std::string& type, const std::string& plugin) {
+  std::vector<std::string> kinds;
+  for (const auto& p : resolved_on(type, plugin).plugins) kinds.push_back(p.kind);
+  return kinds;
+}
+
+// The message of the plugin-not-loaded diagnostic when the cube carries `plugin` (a <plugin> element) on a 3 x 3
+// sensor of `type`; "" when it loads.
+inline std::string not_loaded_on(const std::string& type, const std::string& plugin) {
+  const ModelConfig c = resolved_on(type, plugin);
   for (const auto& d : c.diagnostics)
     if (d.code == "plugin-not-loaded") return d.message;
   return "";

@@ -64,8 +64,14 @@ TEST(Tricycle, TurnsAtTheBicycleRate) {
   w.step(2000);
   const double rate = (yaw_of(w.model_state("tri").pose) - yaw0) / 2.0;
   EXPECT_NEAR(rate, std::sin(0.3), 0.03 * std::sin(0.3));
-  for (const auto& j : w.joint_states("tri"))
-    if (j.name == "front_steering_joint") EXPECT_NEAR(j.position, 0.3, 0.01);
+  // the steering joint must be among the joint states: a renamed or missing joint fails here, not silently
+  bool steering_found = false;
+  for (const auto& j : w.joint_states("tri")) {
+    if (j.name != "front_steering_joint") continue;
+    steering_found = true;
+    EXPECT_NEAR(j.position, 0.3, 0.01);
+  }
+  EXPECT_TRUE(steering_found) << "no joint state named front_steering_joint";
 }
 
 TEST(Tricycle, EncoderOdometryTurnsTheRightWay) {
