@@ -277,7 +277,7 @@ World::World(WorldDescription desc, WorldOptions options) : desc_(std::move(desc
 }
 
 World::~World() {
-  // plug-ins first: one that added step hooks may remove them as it goes
+  // plug-ins first: one from a shared library removes its hooks as it unloads
   impl_->robots.clear();
 }
 
@@ -306,7 +306,10 @@ void World::spawn(const RobotModel& model, const std::string& name, const Eigen:
     for (const auto& j : i.plugin->driven_joints()) r->driven.insert(j);
   r->body = &impl_->phys->add_robot(r->info.model, name, pose, r->driven);
   for (auto& i : r->plugins) impl_->configure(*r, i, tick_);
+  Impl::RobotRt& in = *r;
   impl_->robots.push_back(std::move(r));
+  // plug-ins from shared libraries load on the robot as it is in the world (its Load may look it up)
+  for (size_t k = 0; k < in.plugins.size(); ++k) in.plugins[k].plugin->loaded(*this, &in.info.config.diagnostics);
 }
 
 void World::attach_plugin(const std::string& robot, const PluginSpec& spec) {
@@ -317,6 +320,7 @@ void World::attach_plugin(const std::string& robot, const PluginSpec& spec) {
   r.info.config.plugins.push_back(c);
   r.plugins.push_back(impl_->make_instance(r, c));
   impl_->configure(r, r.plugins.back(), tick_);
+  r.plugins.back().plugin->loaded(*this, &r.info.config.diagnostics);
 }
 
 void World::remove(const std::string& name) {
