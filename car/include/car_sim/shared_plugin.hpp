@@ -45,7 +45,8 @@ void set_shared_plugin_host(SharedPluginHost* host);
 SharedPluginHost* shared_plugin_host();
 
 // Where a plug-in file is looked for, in order, as Gazebo with ROS does: the folders of GAZEBO_PLUGIN_PATH, then
-// the ROS library folders (each CMAKE_PREFIX_PATH entry's lib/), then LD_LIBRARY_PATH's (empty entries dropped).
+// the ROS library folders (each CMAKE_PREFIX_PATH entry's lib/), then LD_LIBRARY_PATH's (empty entries dropped,
+// a folder named twice searched once, where it first comes).
 std::vector<std::string> shared_plugin_search_path();
 // The file for a <plugin filename>: an absolute path as it is when it exists, else the first folder of `dirs` that
 // has it; "" when none has.

@@ -236,3 +236,10 @@ TEST_F(GazeboPlugins, DeletingAControlledModelLeavesTheOthersRunning) {
   w->step(90);
   EXPECT_NEAR(w->model_state("other").pose.translation().x(), 0.03, 1e-9);
 }
+
+// A folder on two of the paths is searched once, where it first comes.
+TEST_F(GazeboPlugins, AFolderOnTwoPathsIsSearchedOnce) {
+  setenv("CMAKE_PREFIX_PATH", "/nowhere/a", 1);
+  setenv("LD_LIBRARY_PATH", ("/nowhere/a/lib:" + kDir + ":/nowhere/b").c_str(), 1);
+  EXPECT_EQ(shared_plugin_search_path(), (std::vector<std::string>{kDir, "/nowhere/a/lib", "/nowhere/b"}));
+}

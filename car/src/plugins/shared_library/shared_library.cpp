@@ -5,6 +5,7 @@
 #include <dlfcn.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <sstream>
 
@@ -102,7 +103,11 @@ std::vector<std::string> shared_plugin_search_path() {
   split_into("GAZEBO_PLUGIN_PATH", "", &dirs);
   split_into("CMAKE_PREFIX_PATH", "/lib", &dirs);
   split_into("LD_LIBRARY_PATH", "", &dirs);
-  return dirs;
+  // a folder named twice is searched once, where it first comes
+  std::vector<std::string> once;
+  for (const auto& d : dirs)
+    if (std::find(once.begin(), once.end(), d) == once.end()) once.push_back(d);
+  return once;
 }
 
 std::string find_shared_plugin(const std::string& filename, const std::vector<std::string>& dirs) {
