@@ -34,4 +34,6 @@ if(CATKIN_ENABLE_TESTING AND TARGET test_core)
   file(GLOB _car_gz_tests CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/gazebo/*.cpp)
   target_sources(test_core PRIVATE ${_car_gz_tests})
   target_compile_definitions(test_core PRIVATE CAR_GAZEBO_TEST_PLUGINS="${_car_gz_plugins}")
+  # the node runs the model push plug-in, found on GAZEBO_PLUGIN_PATH = that folder
+  add_rostest(test/ros/gazebo_plugin.test ARGS plugins:=${_car_gz_plugins} DEPENDENCIES car_gz_test_model_push)
 endif()
