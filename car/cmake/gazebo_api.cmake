@@ -26,6 +26,12 @@ if(CATKIN_ENABLE_TESTING AND TARGET test_core)
       LIBRARY_OUTPUT_DIRECTORY ${_car_gz_plugins})
     add_dependencies(test_core car_gz_test_${_p})
   endforeach()
+  # the model push plug-in under a file name car simulates natively, for the switch CAR_UPSTREAM_PLUGINS
+  add_library(car_gz_test_native_name MODULE EXCLUDE_FROM_ALL test/gazebo/plugins/model_push.cc)
+  target_link_libraries(car_gz_test_native_name car_gazebo)
+  set_target_properties(car_gz_test_native_name PROPERTIES OUTPUT_NAME gazebo_ros_planar_move PREFIX "lib"
+    LIBRARY_OUTPUT_DIRECTORY ${_car_gz_plugins})
+  add_dependencies(test_core car_gz_test_native_name)
   # a library with no RegisterPlugin, for the loader's error
   add_library(car_gz_test_no_register MODULE EXCLUDE_FROM_ALL test/gazebo/plugins/no_register.c)
   set_target_properties(car_gz_test_no_register PROPERTIES OUTPUT_NAME no_register PREFIX "lib"

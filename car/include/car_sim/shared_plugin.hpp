@@ -48,6 +48,9 @@ SharedPluginHost* shared_plugin_host();
 // the ROS library folders (each CMAKE_PREFIX_PATH entry's lib/), then LD_LIBRARY_PATH's (empty entries dropped,
 // a folder named twice searched once, where it first comes).
 std::vector<std::string> shared_plugin_search_path();
+// The switch for a file name car simulates natively: listed in CAR_UPSTREAM_PLUGINS (names separated by ':' or ','),
+// it loads from its library when one is found on the search path, instead of car's kind.
+bool upstream_plugin_wanted(const std::string& filename);
 // The file for a <plugin filename>: an absolute path as it is when it exists, else the first folder of `dirs` that
 // has it; "" when none has.
 std::string find_shared_plugin(const std::string& filename, const std::vector<std::string>& dirs);

@@ -87,8 +87,9 @@ const PluginKind* plugin_kind_for_file(const std::string& filename) {
     return m;
   }();
   const auto it = by_file.find(filename);
-  if (it != by_file.end()) return it->second;
-  return find_shared_plugin(filename, shared_plugin_search_path()).empty() ? nullptr : &shared_library_kind();
+  if (it != by_file.end() && !upstream_plugin_wanted(filename)) return it->second;
+  return find_shared_plugin(filename, shared_plugin_search_path()).empty() ? (it == by_file.end() ? nullptr : it->second)
+                                                                          : &shared_library_kind();
 }
 
 }  // namespace car_sim

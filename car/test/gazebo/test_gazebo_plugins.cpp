@@ -243,3 +243,16 @@ TEST_F(GazeboPlugins, AFolderOnTwoPathsIsSearchedOnce) {
   setenv("LD_LIBRARY_PATH", ("/nowhere/a/lib:" + kDir + ":/nowhere/b").c_str(), 1);
   EXPECT_EQ(shared_plugin_search_path(), (std::vector<std::string>{kDir, "/nowhere/a/lib", "/nowhere/b"}));
 }
+
+// A file name car simulates natively keeps car's kind; listed in CAR_UPSTREAM_PLUGINS, the library of that name on the
+// search path loads instead (the test build's model push, built as libgazebo_ros_planar_move.so, pushes at 0.3 m/s).
+TEST_F(GazeboPlugins, TheSwitchLoadsTheLibraryForANativeName) {
+  EXPECT_EQ(plugin_kind("libgazebo_ros_planar_move.so"), "planar_move");
+  setenv("CAR_UPSTREAM_PLUGINS", "libfoo.so,libgazebo_ros_planar_move.so", 1);
+  EXPECT_EQ(plugin_kind("libgazebo_ros_planar_move.so"), "shared_library");
+  EXPECT_EQ(plugin_kind("libgazebo_ros_diff_drive.so"), "diff_drive");  // not listed
+  auto w = world_with(R"(<plugin name="move" filename="libgazebo_ros_planar_move.so"/>)");
+  unsetenv("CAR_UPSTREAM_PLUGINS");
+  w->step(1000);
+  EXPECT_NEAR(w->model_state("box").pose.translation().x(), 0.3, 1e-9);
+}

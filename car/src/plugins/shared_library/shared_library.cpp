@@ -110,6 +110,19 @@ std::vector<std::string> shared_plugin_search_path() {
   return once;
 }
 
+bool upstream_plugin_wanted(const std::string& filename) {
+  const char* v = std::getenv("CAR_UPSTREAM_PLUGINS");
+  if (!v || filename.empty()) return false;
+  std::string list(v);
+  for (char& c : list)
+    if (c == ',') c = ':';
+  std::stringstream ss(list);
+  std::string name;
+  while (std::getline(ss, name, ':'))
+    if (name == filename) return true;
+  return false;
+}
+
 std::string find_shared_plugin(const std::string& filename, const std::vector<std::string>& dirs) {
   if (filename.empty()) return "";
   if (filename[0] == '/') return is_file(filename) ? filename : "";
