@@ -108,6 +108,7 @@ HEADERS = {
     'pybind11/': ('pybind11-dev', 'pybind11-dev'),
     'sdf/': ('libsdformat-dev', 'libsdformat-dev'),
     'ignition/math': ('libignition-math-dev', 'libignition-math-dev'),
+    'boost/': ('boost', 'libboost-dev'),
     'btBulletDynamicsCommon.h': ('libbullet-dev', 'libbullet-dev'),
     'BulletDynamics/': ('libbullet-dev', 'libbullet-dev'),
     'BulletCollision/': ('libbullet-dev', 'libbullet-dev'),
@@ -139,6 +140,8 @@ CMAKE = {
     'bullet-float64': ('libbullet-dev', 'libbullet-dev'),
     'assimp': ('libassimp-dev', 'libassimp-dev'),
     'GTest': ('gtest', 'googletest'),
+    'ignition-math6': ('libignition-math-dev', 'libignition-math-dev'),
+    'Boost': ('boost', 'libboost-dev'),
 }
 
 # Python files that are not code of a catkin package's own (test helpers import each other by name).

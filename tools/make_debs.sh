@@ -7,6 +7,8 @@
 #                                   models, PyPI's xacro (vendored in /opt/car/lib/car/pypi)
 #   ros-car-gazebo-ros, ros-car-gazebo, ros-car-xacro, ros-car-controller-manager
 #                                   the drop-ins (forwarders into car, launch files)
+#   ros-car-gazebo-dev, ros-car-gazebo-plugins, ros-car-gazebo-ros-control
+#                                   catkin components for users' own Gazebo plug-ins (docs/PLUGINS.md)
 #   ros-car-gazebo-msgs, ros-car-controller-manager-msgs, ros-car-control-msgs
 #                                   the message packages Debian lacks
 # Depends: the Debian packages each one needs: dpkg-shlibdeps for its ELF files, its package.xml's run

@@ -20,6 +20,8 @@
 
 namespace car_sim {
 
+class World;
+
 // ---- outputs ----------------------------------------------------------------------------------------------
 
 // Lists an output's fields for consumers that do not know its type (the Python module, the batch runner).
@@ -268,6 +270,10 @@ class Plugin {
   // Sim time starts at `tick` for this plug-in: at its load (after configure), and at 0 when time goes back
   // (reset_simulation: Gazebo's time-reset event). Its schedule restarts there too.
   virtual void start_clock(uint64_t tick) {}
+  // Once its robot is in the world, after every plug-in of the robot is configured: a plug-in from a shared library
+  // (src/plugins/shared_library/) loads here, with World's public API, which is what it runs on. What goes wrong
+  // goes to *diagnostics (the robot's), and the robot stays. No kind of car's own needs it.
+  virtual void loaded(World& world, std::vector<Diagnostic>* diagnostics) {}
   // Back to the state right after configure (a world reset put the robot back at its spawn pose).
   virtual void reset() {}
   // Whether a reset that keeps time (reset_world) restarts its schedule at the reset's tick, as upstream's Reset
@@ -349,6 +355,7 @@ struct PluginKind {
   std::vector<ParamDef> sensor_schema;      // keys of its <sensor> (flattened paths, update_rate included)
   std::vector<ParamDef> schema;             // keys of its <plugin>
   std::map<std::string, std::string> ignored;  // keys upstream accepts and ignores -> a note ("" = silent)
+  bool any_keys = false;                    // reads keys of its own: none is unknown (a plug-in from a library)
   bool lazy = false;                        // a measurement: computed only while someone listens
   std::string output_group;                 // key of its outputs in Python's take_sensor_outputs(), e.g. "scans"
   // Checks resolved values against the model and fills derived defaults (ctx.fail for errors).

@@ -45,6 +45,7 @@ struct PluginConfig {
   std::string link;        // the link it measures or acts on ("" when the whole model)
   Eigen::Isometry3d sensor_pose = Eigen::Isometry3d::Identity();  // sensor frame in the link frame
   std::vector<ResolvedParam> params;
+  ParamList raw;  // the <plugin>'s elements as written, for a kind that reads its own keys (any_keys)
 
   const ResolvedParam& param(const std::string& key) const;  // throws std::out_of_range
   bool has(const std::string& key) const;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <set>
@@ -206,6 +207,40 @@ class World {
   void set_gravity(const Eigen::Vector3d& g);
   int solver_iterations() const;
   void set_solver_iterations(int n);
+
+  // ---- users' own plug-ins: the calls Gazebo 11's C++ API (src/gazebo/, docs/PLUGINS.md) is built on -------------
+  // Errors are std::invalid_argument with the reason (an unknown model, link or joint; a non-finite number).
+
+  // Whether a step integrates the physics (Gazebo's World::PhysicsEnabled; joint_pose_trajectory switches it off).
+  bool physics_enabled() const;
+  // Per-step hooks, called in the order they were added. BeforePhysics: at the start of every step, before the
+  // plug-ins' pre_physics, with the tick the step starts from; AfterPhysics: after the physics step, before the
+  // plug-ins' track, with the tick reached. A hook may call the commands below; one added inside a hook is first
+  // called at its phase's next call, one removed is not called again. With no hook a step calls nothing.
+  enum class StepPhase { BeforePhysics, AfterPhysics };
+  using StepHook = std::function<void(uint64_t tick)>;
+  // Returns the hook's id (never 0).
+  uint64_t add_step_hook(StepPhase phase, StepHook hook);
+  // Removes a hook; an unknown id is nothing.
+  void remove_step_hook(uint64_t id);
+
+  // A force [N] acting at `point` [m] and a torque [N m] on a robot's link for the coming step only (Gazebo's
+  // Link::AddForce family). Frame::World: force and torque in world axes, point a world position; Frame::Link:
+  // in the link's axes, point relative to the link's origin. Called between steps or in a BeforePhysics hook.
+  enum class Frame { World, Link };
+  void add_link_wrench(const LinkRef& link, const Eigen::Vector3d& force, const Eigen::Vector3d& torque,
+                       const Eigen::Vector3d& point, Frame frame);
+  // A moving joint's position [rad] or [m] and velocity [rad/s] or [m/s].
+  double joint_position(const std::string& robot, const std::string& joint) const;
+  double joint_velocity(const std::string& robot, const std::string& joint) const;
+  // An effort [N m] or [N] on a moving joint for the coming step only, clamped to its <limit effort> when that is
+  // > 0 (Gazebo's Joint::SetForce). Efforts given in one step add up. Returns the effort applied.
+  double add_joint_force(const std::string& robot, const std::string& joint, double effort);
+  // Sets a moving joint's velocity [rad/s] or [m/s] now (Gazebo's Joint::SetVelocity); its position stays.
+  void set_joint_velocity(const std::string& robot, const std::string& joint, double velocity);
+  // Sets a link's velocity now: `linear` [m/s] of its centre of mass and `angular` [rad/s], world frame (Gazebo's
+  // Link::SetLinearVel / SetAngularVel). The link's whole model takes that rigid motion; joint speeds are kept.
+  void set_link_velocity(const LinkRef& link, const Eigen::Vector3d& linear, const Eigen::Vector3d& angular);
 
  private:
   struct Impl;

@@ -971,6 +971,7 @@ class BulletRobot : public Robot {
   Eigen::Vector3d body_com(const std::string& link) const override;
   void set_root_velocity(const Eigen::Vector3d& linear, const Eigen::Vector3d& angular) override;
   void set_joint_position(int joint, double position) override;
+  void set_joint_velocity(int joint, double velocity) override { mb_->setJointVel(joint, velocity); }
   void enable_joint_wrench(int joint) override;
   Wrench joint_wrench(int joint) const override;
   std::vector<LinkContact> link_contacts(const std::string& link) const override;

@@ -107,6 +107,8 @@ class Robot {
   virtual Eigen::Vector3d body_com(const std::string& link) const = 0;
   virtual void set_root_velocity(const Eigen::Vector3d& linear, const Eigen::Vector3d& angular) = 0;
   virtual void set_joint_position(int joint, double position) = 0;
+  // Sets a joint's velocity [rad/s] or [m/s]; its position stays.
+  virtual void set_joint_velocity(int joint, double velocity) = 0;
   virtual void enable_joint_wrench(int joint) = 0;
   virtual Wrench joint_wrench(int joint) const = 0;
   virtual std::vector<LinkContact> link_contacts(const std::string& link) const = 0;

@@ -1,4 +1,5 @@
-// The plug-in registry: every kind car simulates, one line each. A new kind adds its folder under src/plugins/
+// The plug-in registry: every kind car simulates, one line each, and last the entry for plug-ins from shared
+// libraries (users' own Gazebo plug-ins). A new kind adds its folder under src/plugins/
 // and one line here.
 #include <map>
 
@@ -31,6 +32,8 @@
 #include "multicamera/multicamera.hpp"
 #include "ros_control/ros_control.hpp"
 #include "triggered_camera/triggered_camera.hpp"
+#include "shared_library/shared_library.hpp"
+#include "car_sim/shared_plugin.hpp"
 
 namespace car_sim {
 
@@ -64,6 +67,8 @@ const std::vector<const PluginKind*>& plugin_kinds() {
       &multicamera_kind(),
       &ros_control_kind(),
       &triggered_camera_kind(),
+      // any other robot-level file found on the search path: a plug-in from a shared library (a user's own)
+      &shared_library_kind(),
   };
   return kinds;
 }
@@ -82,7 +87,9 @@ const PluginKind* plugin_kind_for_file(const std::string& filename) {
     return m;
   }();
   const auto it = by_file.find(filename);
-  return it == by_file.end() ? nullptr : it->second;
+  if (it != by_file.end() && !upstream_plugin_wanted(filename)) return it->second;
+  return find_shared_plugin(filename, shared_plugin_search_path()).empty() ? (it == by_file.end() ? nullptr : it->second)
+                                                                          : &shared_library_kind();
 }
 
 }  // namespace car_sim

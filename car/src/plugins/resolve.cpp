@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "car_sim/plugin.hpp"
+#include "car_sim/shared_plugin.hpp"
 #include "xml_util.hpp"
 
 namespace car_sim {
@@ -87,6 +88,7 @@ void resolve_keys(const RobotModel& m, const std::vector<ParamDef>& schema, cons
 
 // Plug-in keys that are in no schema: ignored quietly, with a note, or warned with a suggestion.
 void check_unknown_keys(const PluginKind& kind, const PluginSpec& p, ResolveContext& ctx) {
+  if (kind.any_keys) return;
   std::set<std::string> known;
   for (const auto& d : kind.schema) known.insert(d.key);
   for (const auto& kv : p.params) {
@@ -120,6 +122,7 @@ PluginConfig resolve_one(const RobotModel& m, const PluginKind& kind, const Plug
   c.kind = kind.name;
   c.name = p.name;
   c.filename = p.filename;
+  if (kind.any_keys) c.raw = p.params;
   if (s) {
     c.sensor = s->name;
     c.sensor_type = s->type;
@@ -144,6 +147,18 @@ PluginConfig resolve_one(const RobotModel& m, const PluginKind& kind, const Plug
 void warn_unknown(std::vector<Diagnostic>* diags, const std::string& where, const PluginSpec& p) {
   diags->push_back({Severity::Warning, "plugin-unknown", where,
                     "plug-in '" + p.filename + "' is not simulated by car; ignored", p.line});
+}
+
+// A robot-level file that is none of car's kinds and no file on the search path: Gazebo's message, with the folders
+// searched (car_sim/shared_plugin.hpp).
+void warn_not_found(std::vector<Diagnostic>* diags, const std::string& where, const PluginSpec& p) {
+  std::string searched;
+  for (const auto& d : shared_plugin_search_path()) searched += (searched.empty() ? "" : ":") + d;
+  diags->push_back({Severity::Warning, "plugin-unknown", where,
+                    "Failed to load plugin " + p.filename + ": not one car simulates, and no such file in " +
+                        "GAZEBO_PLUGIN_PATH, the ROS library folders or LD_LIBRARY_PATH (searched: " + searched +
+                        "); ignored",
+                    p.line});
 }
 
 // Resolves one plug-in into `out`, or leaves it out with a warning where it does not load (ResolveContext::drop).
@@ -171,7 +186,11 @@ ModelConfig resolve_plugins(const RobotModel& m) {
   ModelConfig out;
   for (const auto& p : m.plugins) {
     const PluginKind* kind = plugin_kind_for_file(p.filename);
-    if (!kind || !kind->model_level) {
+    if (!kind) {
+      warn_not_found(&out.diagnostics, "gazebo/plugin[" + p.name + "]", p);
+      continue;
+    }
+    if (!kind->model_level) {
       warn_unknown(&out.diagnostics, "gazebo/plugin[" + p.name + "]", p);
       continue;
     }

@@ -298,8 +298,13 @@ void SimNode::make_io(const std::string& name) {
     PluginIO pio;
     pio.info = p;
     if (p.inputs.empty() && p.outputs.empty() && p.services.empty()) {
-      ROS_WARN("car: %s: plug-in '%s' (%s) is simulated but has no ports; nothing is published for it",
-               name.c_str(), p.config.name.c_str(), p.config.filename.c_str());
+      // a plug-in from a shared library (it reads its own keys: docs/PLUGINS.md) does its own ROS, if any
+      if (p.kind && p.kind->any_keys)
+        ROS_INFO("car: %s: plug-in '%s' (%s) runs from its library through car's Gazebo API", name.c_str(),
+                 p.config.name.c_str(), p.config.filename.c_str());
+      else
+        ROS_WARN("car: %s: plug-in '%s' (%s) is simulated but has no ports; nothing is published for it",
+                 name.c_str(), p.config.name.c_str(), p.config.filename.c_str());
       io.plugins.push_back(std::move(pio));
       continue;
     }

@@ -231,6 +231,39 @@ struct World::Impl : WorldAccess {
     size_t before;
   };
   std::vector<Due> concurrent_due;
+  // users' own plug-ins' per-step hooks (World::add_step_hook), in the order added. Each on the heap: a hook may add
+  // or remove hooks while it runs; one removed then is marked and dropped once the hooks have run.
+  struct Hook {
+    uint64_t id;
+    StepPhase phase;
+    StepHook fn;
+    bool removed = false;
+  };
+  std::vector<std::unique_ptr<Hook>> hooks;
+  uint64_t next_hook = 1;
+  bool running_hooks = false, hooks_dirty = false;
+  void run_hooks(StepPhase phase, uint64_t tick) {
+    running_hooks = true;
+    const size_t n = hooks.size();  // one added inside a hook is first called at its phase's next call
+    try {
+      for (size_t k = 0; k < n; ++k) {
+        Hook& h = *hooks[k];
+        if (h.phase == phase && !h.removed) h.fn(tick);
+      }
+    } catch (...) {
+      running_hooks = false;
+      drop_removed_hooks();
+      throw;
+    }
+    running_hooks = false;
+    drop_removed_hooks();
+  }
+  void drop_removed_hooks() {
+    if (!hooks_dirty) return;
+    hooks.erase(std::remove_if(hooks.begin(), hooks.end(), [](const std::unique_ptr<Hook>& h) { return h->removed; }),
+                hooks.end());
+    hooks_dirty = false;
+  }
   bool physics_on = true;  // Gazebo's PhysicsEnabled: off, a step advances time only (RobotHandle::set_physics_enabled)
 };
 
@@ -243,7 +276,10 @@ World::World(WorldDescription desc, WorldOptions options) : desc_(std::move(desc
   for (const auto& r : desc_.robots) spawn_sdf(r.robot, r.name, r.pose);
 }
 
-World::~World() = default;
+World::~World() {
+  // plug-ins first: one from a shared library removes its hooks as it unloads
+  impl_->robots.clear();
+}
 
 void World::spawn_sdf(const SdfRobot& robot, const std::string& name, const Eigen::Isometry3d& pose,
                       const std::string& robot_namespace) {
@@ -270,7 +306,10 @@ void World::spawn(const RobotModel& model, const std::string& name, const Eigen:
     for (const auto& j : i.plugin->driven_joints()) r->driven.insert(j);
   r->body = &impl_->phys->add_robot(r->info.model, name, pose, r->driven);
   for (auto& i : r->plugins) impl_->configure(*r, i, tick_);
+  Impl::RobotRt& in = *r;
   impl_->robots.push_back(std::move(r));
+  // plug-ins from shared libraries load on the robot as it is in the world (its Load may look it up)
+  for (size_t k = 0; k < in.plugins.size(); ++k) in.plugins[k].plugin->loaded(*this, &in.info.config.diagnostics);
 }
 
 void World::attach_plugin(const std::string& robot, const PluginSpec& spec) {
@@ -281,6 +320,7 @@ void World::attach_plugin(const std::string& robot, const PluginSpec& spec) {
   r.info.config.plugins.push_back(c);
   r.plugins.push_back(impl_->make_instance(r, c));
   impl_->configure(r, r.plugins.back(), tick_);
+  r.plugins.back().plugin->loaded(*this, &r.info.config.diagnostics);
 }
 
 void World::remove(const std::string& name) {
@@ -320,6 +360,7 @@ void World::step(uint64_t n) {
   for (uint64_t s = 0; s < n; ++s) {
     ctx.tick = tick_;
     for (auto& r : impl_->robots) r->applied.clear();
+    if (!impl_->hooks.empty()) impl_->run_hooks(StepPhase::BeforePhysics, tick_);
     for (auto& r : impl_->robots)
       for (auto& i : r->plugins) i.plugin->pre_physics(ctx, *r);
     impl_->apply_jobs(tick_);
@@ -331,6 +372,7 @@ void World::step(uint64_t n) {
                             " is not finite; the world stops here (reset it, or delete the model)");
     }
     ctx.tick = ++tick_;
+    if (!impl_->hooks.empty()) impl_->run_hooks(StepPhase::AfterPhysics, tick_);
     auto& later = impl_->concurrent_due;
     later.clear();
     for (auto& r : impl_->robots) {
@@ -886,6 +928,87 @@ void World::set_solver_iterations(int n) {
   if (n < 1) throw std::invalid_argument("solver iterations must be at least 1");
   impl_->solver_iterations = n;
   physics::set_solver_iterations(*impl_->phys, n);
+}
+
+// ---- users' own plug-ins ------------------------------------------------------------------------------------
+
+bool World::physics_enabled() const { return impl_->physics_on; }
+
+uint64_t World::add_step_hook(StepPhase phase, StepHook hook) {
+  if (!hook) throw std::invalid_argument("a step hook needs a function");
+  const uint64_t id = impl_->next_hook++;
+  impl_->hooks.push_back(std::make_unique<Impl::Hook>(Impl::Hook{id, phase, std::move(hook)}));
+  return id;
+}
+
+void World::remove_step_hook(uint64_t id) {
+  for (auto& h : impl_->hooks)
+    if (h->id == id) {
+      h->removed = true;
+      impl_->hooks_dirty = true;
+    }
+  if (!impl_->running_hooks) impl_->drop_removed_hooks();
+}
+
+namespace {
+
+// (robot, joint index) of a moving joint, for the per-step calls.
+template <class Impl>
+std::pair<typename Impl::RobotRt*, int> moving_joint(const Impl& impl, const std::string& robot,
+                                                     const std::string& joint) {
+  auto* r = impl.find(robot);
+  if (!r) throw std::invalid_argument("no robot named '" + robot + "'");
+  const int j = r->body->joint(joint);
+  if (j < 0) throw std::invalid_argument("model '" + robot + "' has no moving joint '" + joint + "'");
+  return {r, j};
+}
+
+}  // namespace
+
+void World::add_link_wrench(const LinkRef& link, const Eigen::Vector3d& force, const Eigen::Vector3d& torque,
+                            const Eigen::Vector3d& point, Frame frame) {
+  if (!force.allFinite() || !torque.allFinite() || !point.allFinite())
+    throw std::invalid_argument("force, torque and point must be finite");
+  auto* r = impl_->find(link.model);
+  if (!r) throw std::invalid_argument("no robot named '" + link.model + "'");
+  if (!r->body->has_link(link.link))
+    throw std::invalid_argument("model '" + link.model + "' has no link '" + link.link + "'");
+  r->apply_wrench(link.link, Wrench{force, torque}, point, frame == Frame::Link);
+}
+
+double World::joint_position(const std::string& robot, const std::string& joint) const {
+  const auto [r, j] = moving_joint(*impl_, robot, joint);
+  return r->body->joint_position(j);
+}
+
+double World::joint_velocity(const std::string& robot, const std::string& joint) const {
+  const auto [r, j] = moving_joint(*impl_, robot, joint);
+  return r->body->joint_velocity(j);
+}
+
+double World::add_joint_force(const std::string& robot, const std::string& joint, double effort) {
+  check_effort(effort);
+  const auto [r, j] = moving_joint(*impl_, robot, joint);
+  for (const auto& jt : r->info.model.joints)
+    if (jt.name == joint && jt.limits && jt.limits->effort > 0.0)
+      effort = std::clamp(effort, -jt.limits->effort, jt.limits->effort);
+  physics::add_joint_effort(*r->body, j, effort);
+  return effort;
+}
+
+void World::set_joint_velocity(const std::string& robot, const std::string& joint, double velocity) {
+  if (!std::isfinite(velocity)) throw std::invalid_argument("velocity must be a finite number");
+  const auto [r, j] = moving_joint(*impl_, robot, joint);
+  r->body->set_joint_velocity(j, velocity);
+}
+
+void World::set_link_velocity(const LinkRef& link, const Eigen::Vector3d& linear, const Eigen::Vector3d& angular) {
+  if (!linear.allFinite() || !angular.allFinite()) throw std::invalid_argument("velocities must be finite");
+  ModelState s = link_state(link);
+  // the link frame's origin moves at the centre of mass's velocity plus the turn about it
+  s.linear = linear + angular.cross(s.pose.translation() - body_com(link));
+  s.angular = angular;
+  set_link_state(link, s);
 }
 
 void step_worlds(const std::vector<World*>& worlds, uint64_t n) {

@@ -1,0 +1,45 @@
+# car_gazebo: a subset of Gazebo 11's C++ plug-in API (headers at Gazebo's paths under include/gazebo_api/, so that
+# #include <gazebo/gazebo.hh> works) as thin handles over car_sim::World's public API (docs/PLUGINS.md). Included
+# from car's CMakeLists.txt after the core and its tests. The core includes no header of this layer; this layer
+# includes no private header of the core.
+find_package(ignition-math6 REQUIRED)  # Debian's libignition-math-dev (sdformat 12's maths)
+find_package(Boost REQUIRED)           # boost::shared_ptr, as Gazebo 11's pointer types
+
+add_library(car_gazebo src/gazebo/common.cpp src/gazebo/host.cpp src/gazebo/physics.cpp)
+target_include_directories(car_gazebo PUBLIC include/gazebo_api ${Boost_INCLUDE_DIRS} PRIVATE src/gazebo)
+target_link_libraries(car_gazebo PUBLIC car_sim sdformat12::sdformat12 ignition-math6::ignition-math6)
+set_target_properties(car_gazebo PROPERTIES POSITION_INDEPENDENT_CODE ON)
+
+install(TARGETS car_gazebo
+  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
+install(DIRECTORY include/gazebo_api/ DESTINATION ${CATKIN_GLOBAL_INCLUDE_DESTINATION}/gazebo_api)
+
+# ---- tests: model plug-ins in the style of Gazebo's tutorials, built as .so files and loaded by the world's plug-in
+# table in test_core (test/gazebo/); their folder goes to the tests as CAR_GAZEBO_TEST_PLUGINS.
+if(CATKIN_ENABLE_TESTING AND TARGET test_core)
+  set(_car_gz_plugins ${CMAKE_CURRENT_BINARY_DIR}/gazebo_test_plugins)
+  foreach(_p hello_world model_push parameters velocity_pid throws_in_load forces)
+    add_library(car_gz_test_${_p} MODULE EXCLUDE_FROM_ALL test/gazebo/plugins/${_p}.cc)
+    target_link_libraries(car_gz_test_${_p} car_gazebo)
+    set_target_properties(car_gz_test_${_p} PROPERTIES OUTPUT_NAME ${_p} PREFIX "lib"
+      LIBRARY_OUTPUT_DIRECTORY ${_car_gz_plugins})
+    add_dependencies(test_core car_gz_test_${_p})
+  endforeach()
+  # the model push plug-in under a file name car simulates natively, for the switch CAR_UPSTREAM_PLUGINS
+  add_library(car_gz_test_native_name MODULE EXCLUDE_FROM_ALL test/gazebo/plugins/model_push.cc)
+  target_link_libraries(car_gz_test_native_name car_gazebo)
+  set_target_properties(car_gz_test_native_name PROPERTIES OUTPUT_NAME gazebo_ros_planar_move PREFIX "lib"
+    LIBRARY_OUTPUT_DIRECTORY ${_car_gz_plugins})
+  add_dependencies(test_core car_gz_test_native_name)
+  # a library with no RegisterPlugin, for the loader's error
+  add_library(car_gz_test_no_register MODULE EXCLUDE_FROM_ALL test/gazebo/plugins/no_register.c)
+  set_target_properties(car_gz_test_no_register PROPERTIES OUTPUT_NAME no_register PREFIX "lib"
+    LIBRARY_OUTPUT_DIRECTORY ${_car_gz_plugins})
+  add_dependencies(test_core car_gz_test_no_register)
+  file(GLOB _car_gz_tests CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/gazebo/*.cpp)
+  target_sources(test_core PRIVATE ${_car_gz_tests})
+  target_compile_definitions(test_core PRIVATE CAR_GAZEBO_TEST_PLUGINS="${_car_gz_plugins}")
+  # the node runs the model push plug-in, found on GAZEBO_PLUGIN_PATH = that folder
+  add_rostest(test/ros/gazebo_plugin.test ARGS plugins:=${_car_gz_plugins} DEPENDENCIES car_gz_test_model_push)
+endif()

@@ -1,0 +1,58 @@
+// Plug-ins from shared libraries: a robot's <plugin filename> that is none of car's kinds and names a file on the
+// search path is dlopened by the plug-in table's one entry for them (src/plugins/shared_library/), which hands the
+// library's factory to the skin that runs its API (src/gazebo/: Gazebo 11's C++ plug-in API, library car_gazebo).
+// No Gazebo header here: the core knows the skin only through SharedPluginHost.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "car_sim/model.hpp"
+
+namespace car_sim {
+
+class World;
+
+// What a plug-in from a library is loaded with.
+struct SharedPluginContext {
+  World* world = nullptr;
+  std::string model;     // the robot it belongs to
+  std::string name;      // <plugin name>
+  std::string filename;  // <plugin filename>, as written
+  std::string path;      // the file loaded
+  ParamList params;      // the <plugin>'s elements, flattened ("a/b" for <a><b>)
+};
+
+// A running plug-in, held by the skin; destroyed with its model (unload).
+class SharedPlugin {
+ public:
+  virtual ~SharedPlugin() = default;
+  // reset_world and reset_simulation: the plug-in's Reset.
+  virtual void reset() = 0;
+};
+
+// The skin that runs a library's plug-ins. load() calls the factory `register_fn` (the library's RegisterPlugin)
+// and the plug-in's Load and Init; it throws std::runtime_error with the reason when they fail.
+class SharedPluginHost {
+ public:
+  virtual ~SharedPluginHost() = default;
+  virtual std::unique_ptr<SharedPlugin> load(void* register_fn, const SharedPluginContext& ctx) = 0;
+};
+
+// The host: car_gazebo registers itself when it is loaded (as the dependency of a plug-in's library, or linked).
+void set_shared_plugin_host(SharedPluginHost* host);
+SharedPluginHost* shared_plugin_host();
+
+// Where a plug-in file is looked for, in order, as Gazebo with ROS does: the folders of GAZEBO_PLUGIN_PATH, then
+// the ROS library folders (each CMAKE_PREFIX_PATH entry's lib/), then LD_LIBRARY_PATH's (empty entries dropped,
+// a folder named twice searched once, where it first comes).
+std::vector<std::string> shared_plugin_search_path();
+// The switch for a file name car simulates natively: listed in CAR_UPSTREAM_PLUGINS (names separated by ':' or ','),
+// it loads from its library when one is found on the search path, instead of car's kind.
+bool upstream_plugin_wanted(const std::string& filename);
+// The file for a <plugin filename>: an absolute path as it is when it exists, else the first folder of `dirs` that
+// has it; "" when none has.
+std::string find_shared_plugin(const std::string& filename, const std::vector<std::string>& dirs);
+
+}  // namespace car_sim

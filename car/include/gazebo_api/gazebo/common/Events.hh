@@ -1,0 +1,24 @@
+// car's Gazebo 11 API (docs/PLUGINS.md): the world's update events, in Gazebo's order within a step:
+// WorldUpdateBegin (sim time already counts the coming step), the models' joint controllers, BeforePhysicsUpdate
+// (only while physics is enabled), the physics step, WorldUpdateEnd. A callback connected during a plug-in's
+// Load, Init, Reset or an event belongs to that plug-in's world. Events car does not raise (pause, stop, render,
+// sensors) are not declared: code that connects to them does not build.
+#pragma once
+
+#include <functional>
+
+#include "gazebo/common/Event.hh"
+#include "gazebo/common/UpdateInfo.hh"
+
+namespace gazebo {
+namespace event {
+
+class Events {
+ public:
+  static ConnectionPtr ConnectWorldUpdateBegin(std::function<void(const common::UpdateInfo&)> _subscriber);
+  static ConnectionPtr ConnectBeforePhysicsUpdate(std::function<void(const common::UpdateInfo&)> _subscriber);
+  static ConnectionPtr ConnectWorldUpdateEnd(std::function<void()> _subscriber);
+};
+
+}  // namespace event
+}  // namespace gazebo

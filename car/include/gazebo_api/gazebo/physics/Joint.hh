@@ -1,0 +1,60 @@
+// car's Gazebo 11 API (docs/PLUGINS.md): gazebo::physics::Joint, a handle on a moving joint (revolute, continuous,
+// prismatic: one axis, index 0) of one of car's robots.
+#pragma once
+
+#include <boost/enable_shared_from_this.hpp>
+#include <boost/weak_ptr.hpp>
+#include <ignition/math/Vector3.hh>
+#include <string>
+
+#include "gazebo/common/Time.hh"
+#include "gazebo/physics/PhysicsTypes.hh"
+
+namespace gazebo {
+namespace physics {
+
+class Joint : public boost::enable_shared_from_this<Joint> {
+ public:
+  // car: made by the Model handle.
+  Joint(ModelPtr _model, const std::string& _name);
+  virtual ~Joint();
+
+  std::string GetName() const;
+  std::string GetScopedName(bool _prependWorldName = false) const;
+  ModelPtr GetModel() const;
+  WorldPtr GetWorld() const;
+  LinkPtr GetParent() const;
+  LinkPtr GetChild() const;
+  unsigned int DOF() const;
+
+  // [rad] or [m]; an index other than 0 is an error (gzerr) and NaN.
+  double Position(const unsigned int _index = 0) const;
+  // [rad/s] or [m/s]
+  double GetVelocity(unsigned int _index) const;
+  // Sets the joint's rate now; its position stays.
+  void SetVelocity(unsigned int _index, double _vel);
+  // [N m] or [N] for the coming step, clamped to the effort limit; calls in one step add up.
+  void SetForce(unsigned int _index, double _effort);
+  // The sum SetForce applied in the current (or, between steps, the last) step with a SetForce.
+  double GetForce(unsigned int _index);
+  // Sets the position; the joint's speed becomes 0 (car: _preserveWorldVelocity is not offered and must be false).
+  bool SetPosition(const unsigned int _index, const double _position, const bool _preserveWorldVelocity = false);
+  double LowerLimit(unsigned int _index = 0) const;
+  double UpperLimit(const unsigned int _index = 0) const;
+  double GetEffortLimit(unsigned int _index);
+  double GetVelocityLimit(unsigned int _index);
+  // The axis in the joint frame (a unit vector).
+  ignition::math::Vector3d LocalAxis(const unsigned int _index) const;
+
+ private:
+  boost::weak_ptr<Model> model;
+  std::string name;
+  std::string parent, child;
+  double lower, upper, effort, velocity;
+  ignition::math::Vector3d axis;
+  double forceApplied = 0.0;
+  common::Time forceAppliedTime;
+};
+
+}  // namespace physics
+}  // namespace gazebo

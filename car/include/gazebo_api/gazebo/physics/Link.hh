@@ -1,0 +1,70 @@
+// car's Gazebo 11 API (docs/PLUGINS.md): gazebo::physics::Link, a handle on a link of one of car's robots.
+// Forces and torques act in the coming physics step only (Gazebo's rule): add them each step, in WorldUpdateBegin.
+#pragma once
+
+#include <boost/enable_shared_from_this.hpp>
+#include <boost/weak_ptr.hpp>
+#include <ignition/math/Pose3.hh>
+#include <ignition/math/Vector3.hh>
+#include <string>
+
+#include "gazebo/physics/PhysicsTypes.hh"
+
+namespace gazebo {
+namespace physics {
+
+class Link : public boost::enable_shared_from_this<Link> {
+ public:
+  // car: made by the Model handle.
+  Link(ModelPtr _model, const std::string& _name);
+  virtual ~Link();
+
+  std::string GetName() const;
+  std::string GetScopedName(bool _prependWorldName = false) const;
+  ModelPtr GetModel() const;
+  WorldPtr GetWorld() const;
+  InertialPtr GetInertial() const;
+
+  // The link frame, world frame.
+  ignition::math::Pose3d WorldPose() const;
+  // The centre of gravity's frame (the link's axes), world frame.
+  ignition::math::Pose3d WorldCoGPose() const;
+  // Moves the link's whole model rigidly so that the link lands on _pose (joints kept); _notify and _publish have
+  // no effect in car.
+  void SetWorldPose(const ignition::math::Pose3d& _pose, bool _notify = true, bool _publish = true);
+  // Velocity of the link frame's origin, world frame.
+  ignition::math::Vector3d WorldLinearVel() const;
+  // Velocity of the point _offset (link frame, from the link origin), world frame.
+  ignition::math::Vector3d WorldLinearVel(const ignition::math::Vector3d& _offset) const;
+  ignition::math::Vector3d WorldCoGLinearVel() const;
+  ignition::math::Vector3d WorldAngularVel() const;
+  // The same in the link's axes.
+  ignition::math::Vector3d RelativeLinearVel() const;
+  ignition::math::Vector3d RelativeAngularVel() const;
+  // The centre of gravity's velocity / the angular velocity, world frame; the model moves rigidly with the link.
+  void SetLinearVel(const ignition::math::Vector3d& _vel);
+  void SetAngularVel(const ignition::math::Vector3d& _vel);
+
+  // [N] world frame, at the centre of gravity.
+  void AddForce(const ignition::math::Vector3d& _force);
+  // [N] link axes, at the centre of gravity.
+  void AddRelativeForce(const ignition::math::Vector3d& _force);
+  // [N] world frame, at a world position [m].
+  void AddForceAtWorldPosition(const ignition::math::Vector3d& _force, const ignition::math::Vector3d& _pos);
+  // [N] world frame, at _relPos [m] (link frame, from the link origin).
+  void AddForceAtRelativePosition(const ignition::math::Vector3d& _force, const ignition::math::Vector3d& _relPos);
+  // [N] link axes, at _offset [m] (link frame, from the link origin).
+  void AddLinkForce(const ignition::math::Vector3d& _force,
+                    const ignition::math::Vector3d& _offset = ignition::math::Vector3d::Zero);
+  // [N m] world axes / link axes.
+  void AddTorque(const ignition::math::Vector3d& _torque);
+  void AddRelativeTorque(const ignition::math::Vector3d& _torque);
+
+ private:
+  boost::weak_ptr<Model> model;
+  std::string name;
+  InertialPtr inertial;
+};
+
+}  // namespace physics
+}  // namespace gazebo

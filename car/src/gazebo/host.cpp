@@ -1,0 +1,213 @@
+// car_gazebo's host: runs the model plug-ins car's plug-in table loads from libraries (car_sim/shared_plugin.hpp)
+// and raises Gazebo's update events from two step hooks on car's world, in Gazebo 11's order: WorldUpdateBegin
+// (sim time counting the coming step), the models' joint controllers, BeforePhysicsUpdate (physics enabled), the
+// physics step, WorldUpdateEnd. docs/PLUGINS.md.
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "car_sim/shared_plugin.hpp"
+#include "car_sim/world.hpp"
+#include "gazebo/common/Events.hh"
+#include "gazebo/common/Plugin.hh"
+#include "gazebo/physics/Model.hh"
+#include "gazebo/physics/World.hh"
+#include "hub.hpp"
+
+namespace car_gazebo {
+
+namespace {
+
+std::map<car_sim::World*, std::weak_ptr<Hub>>& hubs() {
+  static std::map<car_sim::World*, std::weak_ptr<Hub>> m;
+  return m;
+}
+
+thread_local Hub* g_current = nullptr;
+
+}  // namespace
+
+gazebo::common::Time time_of(uint64_t tick, double dt) {
+  const int64_t ns = car_sim::tick_time_ns(tick, dt);
+  return gazebo::common::Time(static_cast<int32_t>(ns / 1000000000), static_cast<int32_t>(ns % 1000000000));
+}
+
+Hub::Hub(car_sim::World* c) : core(c), world(new gazebo::physics::World(c)) {
+  info_.worldName = core->description().name;
+  before_hook_ = core->add_step_hook(car_sim::World::StepPhase::BeforePhysics, [this](uint64_t t) { before_physics(t); });
+  after_hook_ = core->add_step_hook(car_sim::World::StepPhase::AfterPhysics, [this](uint64_t t) { after_physics(t); });
+}
+
+Hub::~Hub() {
+  core->remove_step_hook(before_hook_);
+  core->remove_step_hook(after_hook_);
+  hubs().erase(core);
+}
+
+std::shared_ptr<Hub> Hub::of(car_sim::World* core) {
+  auto& m = hubs();
+  if (auto h = m[core].lock()) return h;
+  auto h = std::make_shared<Hub>(core);
+  m[core] = h;
+  return h;
+}
+
+Hub* Hub::current() {
+  if (g_current) return g_current;
+  auto& m = hubs();
+  if (m.size() == 1)
+    if (auto h = m.begin()->second.lock()) return h.get();
+  return nullptr;
+}
+
+CurrentHub::CurrentHub(Hub* hub) : previous_(g_current) { g_current = hub; }
+CurrentHub::~CurrentHub() { g_current = previous_; }
+
+void Hub::before_physics(uint64_t tick) {
+  CurrentHub in(this);
+  // Gazebo counts the step in sim time before it raises WorldUpdateBegin
+  info_.simTime = time_of(tick + 1, core->dt());
+  info_.realTime = info_.simTime;
+  world->SetInStep(true);
+  try {
+    begin.fire(info_);
+    world->UpdateControllers();
+    if (core->physics_enabled()) before.fire(info_);
+  } catch (...) {
+    world->SetInStep(false);
+    throw;
+  }
+  world->SetInStep(false);
+}
+
+void Hub::after_physics(uint64_t) {
+  CurrentHub in(this);
+  end.fire();
+}
+
+namespace {
+
+// The <plugin> element with its children as written (flattened keys "a/b" back to nested elements), each a string
+// value as sdformat keeps a plug-in's elements: Get<double>, Get<ignition::math::Vector3d>, ... parse it.
+sdf::ElementPtr plugin_sdf(const car_sim::SharedPluginContext& ctx) {
+  auto e = std::make_shared<sdf::Element>();
+  e->SetName("plugin");
+  e->AddAttribute("name", "string", "", true);
+  e->AddAttribute("filename", "string", "", true);
+  e->GetAttribute("name")->SetFromString(ctx.name);
+  e->GetAttribute("filename")->SetFromString(ctx.filename);
+  for (const auto& [key, value] : ctx.params) {
+    sdf::ElementPtr at = e;
+    std::stringstream ss(key);
+    std::string part;
+    std::vector<std::string> parts;
+    while (std::getline(ss, part, '/')) parts.push_back(part);
+    for (size_t i = 0; i < parts.size(); ++i) {
+      const bool leaf = i + 1 == parts.size();
+      sdf::ElementPtr next = leaf || !at->HasElement(parts[i]) ? nullptr : at->GetElement(parts[i]);
+      if (!next) {
+        next = std::make_shared<sdf::Element>();
+        next->SetName(parts[i]);
+        next->SetParent(at);
+        at->InsertElement(next);
+      }
+      if (leaf) next->AddValue("string", value, false);
+      at = next;
+    }
+  }
+  return e;
+}
+
+// A model plug-in with what keeps its world's events going while it lives.
+class Running : public car_sim::SharedPlugin {
+ public:
+  ~Running() override {
+    CurrentHub in(hub.get());
+    plugin.reset();  // its connections go with it, while the hub is there
+  }
+  void reset() override {
+    CurrentHub in(hub.get());
+    plugin->Reset();
+  }
+  std::shared_ptr<Hub> hub;
+  gazebo::physics::ModelPtr model;
+  std::unique_ptr<gazebo::ModelPlugin> plugin;
+};
+
+class Host : public car_sim::SharedPluginHost {
+ public:
+  std::unique_ptr<car_sim::SharedPlugin> load(void* register_fn, const car_sim::SharedPluginContext& ctx) override {
+    auto run = std::make_unique<Running>();
+    run->hub = Hub::of(ctx.world);
+    CurrentHub in(run->hub.get());
+    using Factory = gazebo::ModelPlugin* (*)();
+    run->plugin.reset(reinterpret_cast<Factory>(register_fn)());
+    if (!run->plugin) throw std::runtime_error("RegisterPlugin returned no plug-in");
+    if (run->plugin->GetType() != gazebo::MODEL_PLUGIN)
+      throw std::runtime_error("it is not a model plug-in (type " + std::to_string(run->plugin->GetType()) + ")");
+    run->plugin->filename = ctx.filename;
+    run->plugin->handleName = ctx.name;
+    run->model = run->hub->world->ModelByName(ctx.model);
+    try {
+      run->plugin->Load(run->model, plugin_sdf(ctx));
+      run->plugin->Init();
+    } catch (const std::exception& e) {
+      throw std::runtime_error(std::string("Load threw: ") + e.what());
+    } catch (...) {
+      throw std::runtime_error("Load threw an exception that is not a std::exception");
+    }
+    return run;
+  }
+};
+
+Host g_host;
+
+// registered as the library is loaded: as a plug-in's dependency (dlopen) or linked into a program
+const bool g_registered = [] {
+  car_sim::set_shared_plugin_host(&g_host);
+  return true;
+}();
+
+}  // namespace
+
+}  // namespace car_gazebo
+
+namespace gazebo {
+namespace event {
+
+namespace {
+
+car_gazebo::Hub& hub_for(const char* event) {
+  car_gazebo::Hub* h = car_gazebo::Hub::current();
+  if (!h)
+    throw std::logic_error(std::string("event::Events::") + event +
+                           " outside a plug-in's Load, Init, Reset or event, with several worlds: car cannot tell "
+                           "which world it is for");
+  return *h;
+}
+
+template <class List, class Fn>
+ConnectionPtr connect(car_gazebo::Hub& h, List car_gazebo::Hub::*list, Fn fn) {
+  const int id = (h.*list).connect(std::move(fn));
+  std::weak_ptr<car_gazebo::Hub> weak = h.shared_from_this();
+  return std::make_shared<Connection>([weak, list, id] {
+    if (auto hub = weak.lock()) ((*hub).*list).disconnect(id);
+  });
+}
+
+}  // namespace
+
+ConnectionPtr Events::ConnectWorldUpdateBegin(std::function<void(const common::UpdateInfo&)> _subscriber) {
+  return connect(hub_for("ConnectWorldUpdateBegin"), &car_gazebo::Hub::begin, std::move(_subscriber));
+}
+
+ConnectionPtr Events::ConnectBeforePhysicsUpdate(std::function<void(const common::UpdateInfo&)> _subscriber) {
+  return connect(hub_for("ConnectBeforePhysicsUpdate"), &car_gazebo::Hub::before, std::move(_subscriber));
+}
+
+ConnectionPtr Events::ConnectWorldUpdateEnd(std::function<void()> _subscriber) {
+  return connect(hub_for("ConnectWorldUpdateEnd"), &car_gazebo::Hub::end, std::move(_subscriber));
+}
+
+}  // namespace event
+}  // namespace gazebo

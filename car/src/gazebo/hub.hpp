@@ -1,0 +1,118 @@
+// car_gazebo's per-world state (private): the physics::World handle, the event lists and the two step hooks on
+// car's world that raise Gazebo's update events in Gazebo's order.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "car_sim/world.hpp"
+#include "gazebo/common/Event.hh"
+#include "gazebo/common/UpdateInfo.hh"
+#include "gazebo/physics/PhysicsTypes.hh"
+#include <Eigen/Geometry>
+#include <ignition/math/Pose3.hh>
+
+namespace car_gazebo {
+
+// One event's callbacks, in the order connected. A callback may disconnect (itself or another) while the event
+// runs: it is marked and dropped afterwards.
+template <class... Args>
+class SlotList {
+ public:
+  int connect(std::function<void(Args...)> fn) {
+    slots_.push_back(std::make_unique<Slot>(Slot{next_, std::move(fn), false}));
+    return next_++;
+  }
+  void disconnect(int id) {
+    for (auto& s : slots_)
+      if (s->id == id) s->removed = true;
+    dirty_ = true;
+    if (!running_) drop();
+  }
+  void fire(Args... args) {
+    if (slots_.empty()) return;
+    running_ = true;
+    const size_t n = slots_.size();
+    try {
+      for (size_t k = 0; k < n; ++k)
+        if (!slots_[k]->removed) slots_[k]->fn(args...);
+    } catch (...) {
+      running_ = false;
+      drop();
+      throw;
+    }
+    running_ = false;
+    drop();
+  }
+  bool empty() const { return slots_.empty(); }
+
+ private:
+  struct Slot {
+    int id;
+    std::function<void(Args...)> fn;
+    bool removed;
+  };
+  void drop() {
+    if (!dirty_) return;
+    std::vector<std::unique_ptr<Slot>> keep;
+    for (auto& s : slots_)
+      if (!s->removed) keep.push_back(std::move(s));
+    slots_.swap(keep);
+    dirty_ = false;
+  }
+  std::vector<std::unique_ptr<Slot>> slots_;
+  int next_ = 0;
+  bool running_ = false, dirty_ = false;
+};
+
+class Hub : public std::enable_shared_from_this<Hub> {
+ public:
+  explicit Hub(car_sim::World* core);
+  ~Hub();
+  // The hub of a car world, made on first use; it lives while a plug-in of that world holds it.
+  static std::shared_ptr<Hub> of(car_sim::World* core);
+  // The hub whose plug-in is running now (Load, Init, Reset, an event); else the only one there is; else null.
+  static Hub* current();
+
+  car_sim::World* core;
+  gazebo::physics::WorldPtr world;
+  SlotList<const gazebo::common::UpdateInfo&> begin, before;
+  SlotList<> end;
+
+ private:
+  void before_physics(uint64_t tick);
+  void after_physics(uint64_t tick);
+  gazebo::common::UpdateInfo info_;
+  uint64_t before_hook_ = 0, after_hook_ = 0;
+};
+
+// Makes a hub current for the plug-in code run in its scope.
+class CurrentHub {
+ public:
+  explicit CurrentHub(Hub* hub);
+  ~CurrentHub();
+
+ private:
+  Hub* previous_;
+};
+
+// Sim time of a tick as Gazebo's common::Time.
+gazebo::common::Time time_of(uint64_t tick, double dt);
+
+inline ignition::math::Vector3d ign(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+inline Eigen::Vector3d eig(const ignition::math::Vector3d& v) { return {v.X(), v.Y(), v.Z()}; }
+inline ignition::math::Pose3d ign(const Eigen::Isometry3d& T) {
+  const Eigen::Quaterniond q(T.linear());
+  return ignition::math::Pose3d(ign(Eigen::Vector3d(T.translation())),
+                                ignition::math::Quaterniond(q.w(), q.x(), q.y(), q.z()));
+}
+inline Eigen::Isometry3d eig(const ignition::math::Pose3d& p) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Quaterniond(p.Rot().W(), p.Rot().X(), p.Rot().Y(), p.Rot().Z()).normalized().toRotationMatrix();
+  T.translation() = eig(p.Pos());
+  return T;
+}
+
+}  // namespace car_gazebo

@@ -1,0 +1,33 @@
+# find_package(gazebo) as Gazebo 11's gazebo-config.cmake: GAZEBO_INCLUDE_DIRS, GAZEBO_LIBRARIES,
+# GAZEBO_LIBRARY_DIRS, GAZEBO_CXX_FLAGS, for car's subset of Gazebo 11's C++ plug-in API (car_gazebo: the headers
+# at Gazebo's paths, <gazebo/gazebo.hh>, ...; car/docs/PLUGINS.md says what it offers). A plug-in built with them
+# is loaded by car from GAZEBO_PLUGIN_PATH, the ROS library folders or LD_LIBRARY_PATH.
+if(NOT car_FOUND)
+  find_package(car REQUIRED)
+endif()
+find_package(sdformat12 REQUIRED)
+find_package(ignition-math6 REQUIRED)
+find_package(Boost REQUIRED)
+
+set(GAZEBO_INCLUDE_DIRS "")
+foreach(_gz_dir ${car_INCLUDE_DIRS})
+  if(EXISTS "${_gz_dir}/gazebo_api/gazebo/gazebo.hh")
+    list(APPEND GAZEBO_INCLUDE_DIRS "${_gz_dir}/gazebo_api")
+  endif()
+endforeach()
+if(NOT GAZEBO_INCLUDE_DIRS)
+  message(FATAL_ERROR "gazebo (car's drop-in): car's Gazebo API headers (gazebo_api/gazebo/gazebo.hh) are not in "
+                      "car's include folders: ${car_INCLUDE_DIRS}")
+endif()
+get_target_property(_gz_sdf_inc sdformat12::sdformat12 INTERFACE_INCLUDE_DIRECTORIES)
+get_target_property(_gz_ign_inc ignition-math6::ignition-math6 INTERFACE_INCLUDE_DIRECTORIES)
+list(APPEND GAZEBO_INCLUDE_DIRS ${car_INCLUDE_DIRS} ${_gz_sdf_inc} ${_gz_ign_inc} ${Boost_INCLUDE_DIRS})
+list(REMOVE_DUPLICATES GAZEBO_INCLUDE_DIRS)
+set(GAZEBO_LIBRARIES ${car_LIBRARIES} sdformat12::sdformat12 ignition-math6::ignition-math6)
+set(GAZEBO_LIBRARY_DIRS ${car_LIBRARY_DIRS})
+set(GAZEBO_CXX_FLAGS "-std=c++17")
+set(GAZEBO_VERSION 11.10.2)
+set(GAZEBO_MAJOR_VERSION 11)
+set(GAZEBO_MINOR_VERSION 10)
+set(GAZEBO_PATCH_VERSION 2)
+set(GAZEBO_FOUND TRUE)
