@@ -6,7 +6,8 @@ get_filename_component(CAR_DIR "${CMAKE_CURRENT_LIST_DIR}/.." ABSOLUTE)
 
 # ---- system libraries: each missing one named by its Debian package, all in one message --------------------------
 # (tools/setup.sh installs them; a plain REQUIRED find would stop at the first with a CMake trace instead)
-set(_car_missing "")
+# (the includer may have found some missing already: the pip entry, python3-dev)
+set(_car_missing ${CAR_MISSING_DEBS})
 find_package(PkgConfig QUIET)
 if(PkgConfig_FOUND)
   # Bullet in double precision (Debian ships both builds; double matches PyBullet's and keeps mm-level contacts).
@@ -23,7 +24,9 @@ foreach(_dep urdfdom=liburdfdom-dev tinyxml2=libtinyxml2-dev Eigen3=libeigen3-de
   string(REPLACE "=" ";" _dep "${_dep}")
   list(GET _dep 0 _pkg)
   list(GET _dep 1 _deb)
-  if(_pkg STREQUAL "embree")
+  if(_pkg STREQUAL "pybind11" AND "python3-dev" IN_LIST _car_missing)
+    continue()  # pybind11 needs Python's headers to be found at all
+  elseif(_pkg STREQUAL "embree")
     find_package(embree 3 QUIET)
   else()
     find_package(${_pkg} QUIET)
