@@ -10,6 +10,7 @@ A module or header that is in no table is a gap too ("add it to the table"): not
 from __future__ import annotations
 
 import argparse
+import glob
 import os
 import re
 import sys
@@ -142,6 +143,8 @@ CMAKE = {
     'GTest': ('gtest', 'googletest'),
     'ignition-math6': ('libignition-math-dev', 'libignition-math-dev'),
     'Boost': ('boost', 'libboost-dev'),
+    # the pip build's entry (car/cmake/pip/): Python's headers, outside catkin
+    'Python': ('', 'python3-dev'),
 }
 
 # Python files that are not code of a catkin package's own (test helpers import each other by name).
@@ -151,6 +154,15 @@ SKIP_DIRS = {'.git', '.ws', '.venv', '__pycache__', 'bench/out', 'car/bench/out'
 IMPORT_RE = re.compile(r'^\s*(?:from\s+([A-Za-z_][\w.]*)\s+import|import\s+([A-Za-z_][\w.]*(?:\s*,\s*[A-Za-z_][\w.]*)*))')
 INCLUDE_RE = re.compile(r'^\s*#\s*include\s*<([^>]+)>')
 FIND_RE = re.compile(r'find_package\(\s*(\w+)')
+
+
+def cmake_files(pkg_dir):
+    """A package's CMakeLists.txt and the CMake files under its cmake/ (car/cmake/core.cmake, which CMakeLists.txt
+    includes; cmake/pip/CMakeLists.txt, the pip build's entry)."""
+    files = [os.path.join(pkg_dir, 'CMakeLists.txt')]
+    files += sorted(glob.glob(os.path.join(pkg_dir, 'cmake', '**', '*.cmake'), recursive=True))
+    files += sorted(glob.glob(os.path.join(pkg_dir, 'cmake', '**', 'CMakeLists.txt'), recursive=True))
+    return [f for f in files if os.path.exists(f)]
 
 
 def python_files(root):
@@ -322,31 +334,29 @@ def check(root):
                         gaps.append('%s: line %d starts a node of %s, which is in no table of tools/check_deps.py; '
                                     'add it' % (os.path.relpath(path, root), n, pkg))
     for d, (name, keys) in packages.items():
-        cm = os.path.join(d, 'CMakeLists.txt')
-        if not os.path.exists(cm):
-            continue
-        text = open(cm).read()
-        for m in FIND_RE.finditer(text):
-            pkg = m.group(1)
-            if pkg in CMAKE:
-                need(cm, 'find_package(%s)' % pkg, *CMAKE[pkg])
-            else:
-                gaps.append('%s: find_package(%s) is in no table of tools/check_deps.py; add it' %
-                            (os.path.relpath(cm, root), pkg))
-        for m in re.finditer(r'pkg_check_modules\(([^)]*)\)', text):
-            for word in m.group(1).split()[1:]:
-                if word in ('REQUIRED', 'IMPORTED_TARGET', 'QUIET', 'NO_CMAKE_PATH', 'NO_CMAKE_ENVIRONMENT_PATH'):
-                    continue
-                if word in CMAKE:
-                    need(cm, 'pkg_check_modules(%s)' % word, *CMAKE[word])
+        for cm in cmake_files(d):
+            text = open(cm).read()
+            for m in FIND_RE.finditer(text):
+                pkg = m.group(1)
+                if pkg in CMAKE:
+                    need(cm, 'find_package(%s)' % pkg, *CMAKE[pkg])
                 else:
-                    gaps.append('%s: pkg_check_modules(%s) is in no table of tools/check_deps.py; add it' %
-                                (os.path.relpath(cm, root), word))
-        # catkin components: each must be declared (they are ROS packages of the same name)
-        for m in re.finditer(r'find_package\(\s*catkin\s+REQUIRED\s+COMPONENTS([^)]*)\)', text):
-            for comp in m.group(1).split():
-                if comp not in keys:
-                    gaps.append('%s: catkin component %s is not declared in package.xml' % (os.path.relpath(cm, root), comp))
+                    gaps.append('%s: find_package(%s) is in no table of tools/check_deps.py; add it' %
+                                (os.path.relpath(cm, root), pkg))
+            for m in re.finditer(r'pkg_check_modules\(([^)]*)\)', text):
+                for word in m.group(1).split()[1:]:
+                    if word in ('REQUIRED', 'IMPORTED_TARGET', 'QUIET', 'NO_CMAKE_PATH', 'NO_CMAKE_ENVIRONMENT_PATH'):
+                        continue
+                    if word in CMAKE:
+                        need(cm, 'pkg_check_modules(%s)' % word, *CMAKE[word])
+                    else:
+                        gaps.append('%s: pkg_check_modules(%s) is in no table of tools/check_deps.py; add it' %
+                                    (os.path.relpath(cm, root), word))
+            # catkin components: each must be declared (they are ROS packages of the same name)
+            for m in re.finditer(r'find_package\(\s*catkin\s+REQUIRED\s+COMPONENTS([^)]*)\)', text):
+                for comp in m.group(1).split():
+                    if comp not in keys:
+                        gaps.append('%s: catkin component %s is not declared in package.xml' % (os.path.relpath(cm, root), comp))
     return sorted(set(gaps))
 
 

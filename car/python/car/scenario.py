@@ -74,10 +74,15 @@ def _unknown(file, where, d, allowed):
 
 
 def resolve_path(path: str, base_dir: str) -> str:
-    """A file named in a scenario: $(find pkg)/rest through rospkg, absolute, or relative to the scenario's folder."""
+    """A file named in a scenario: $(find pkg)/rest through rospkg (without it: $(find car) only), absolute, or
+    relative to the scenario's folder."""
     m = re.match(r'^\$\(find ([^)\s]+)\)(.*)$', path)
     if m:
-        import rospkg
+        try:
+            import rospkg
+        except ImportError:  # a pip install without ROS: $(find car) is car's own files, other packages unknown
+            from car.paths import package_dir
+            return package_dir() + m.group(2) if m.group(1) == 'car' else path
         try:
             return rospkg.RosPack().get_path(m.group(1)) + m.group(2)
         except rospkg.ResourceNotFound:

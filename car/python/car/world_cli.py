@@ -105,8 +105,8 @@ def cmd_plot(a) -> int:
 
 
 def main(argv=None) -> int:
-    import rospy
-    argv = rospy.myargv(sys.argv if argv is None else ['world_tool'] + list(argv))[1:]
+    # roslaunch's remappings (NAME:=VALUE) dropped, as rospy.myargv does; without rospy, which a pip install lacks
+    argv = [a for a in (sys.argv if argv is None else ['world_tool'] + list(argv)) if ':=' not in a][1:]
     ap = argparse.ArgumentParser(prog='world_tool', description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = ap.add_subparsers(dest='command', required=True)

@@ -86,6 +86,9 @@ const std::string& car_package_dir() {
       const fs::path lib = fs::canonical(info.dli_fname, ec);
       const fs::path share = lib.parent_path().parent_path() / "share" / "car";
       if (!ec && fs::exists(share / "config" / "gazebo_materials.txt", ec)) return share.string();
+      // a wheel (pip, pyproject.toml): the core is linked into <site-packages>/car/_core*.so, beside car/data/
+      const fs::path data = lib.parent_path() / "data";
+      if (!ec && fs::exists(data / "config" / "gazebo_materials.txt", ec)) return data.string();
     }
     return std::string(CAR_PACKAGE_DIR);
   }();

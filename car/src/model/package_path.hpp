@@ -16,7 +16,7 @@ std::string find_ros_package(const std::string& name, const std::vector<std::str
 
 // car's own data folder (config/, models/, urdf/, worlds/): <prefix>/share/car beside the loaded libcar_sim where
 // car is installed (catkin_make install, the .debs: relocatable), else the source package it was built from (the
-// devel space). Docs: docs/INSTALL.md "Where car finds its files".
+// devel space). A wheel (pip) has it as car/data/ beside car/_core, the library the core is linked into. Docs: docs/INSTALL.md "Where car finds its files".
 const std::string& car_package_dir();
 
 }  // namespace detail

@@ -6,6 +6,7 @@ import xml.etree.ElementTree as ET
 import pytest
 
 from car import _core, world_tools
+from car.paths import package_dir
 from conftest import DATA, ROOT
 
 WORLDS = os.path.join(DATA, 'worlds')
@@ -95,7 +96,8 @@ def test_model_path_order_is_the_same_in_both(monkeypatch, tmp_path):
     assert world_tools.resolve_uri('model://ground_plane', '.') == str(tmp_path / 'ground_plane')
     assert _core.resolve_uri('model://ground_plane') == str(tmp_path / 'ground_plane')
     monkeypatch.setenv('GAZEBO_MODEL_PATH', '')
-    builtin = os.path.realpath(os.path.join(ROOT, 'models', 'ground_plane'))
+    # the built-in models where car's files are: the source package, or car/data/ in a pip install
+    builtin = os.path.realpath(os.path.join(package_dir(), 'models', 'ground_plane'))
     assert os.path.realpath(world_tools.resolve_uri('model://ground_plane', '.')) == builtin
     assert os.path.realpath(_core.resolve_uri('model://ground_plane')) == builtin
 
