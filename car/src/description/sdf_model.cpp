@@ -88,6 +88,33 @@ const std::vector<std::string>& simulated_geometry() {
 namespace detail {
 
 // Rule 9: box, cylinder, sphere, mesh, plane; anything else is skipped with a warning (the world loader too).
+std::optional<WorldVisual> read_visual(const sdf::Visual& v, const std::string& where,
+                                       std::vector<Diagnostic>* diagnostics) {
+  auto shape = to_shape(*v.Geom(), where + "/visual[" + v.Name() + "]", line_of(v.Element()), diagnostics);
+  if (!shape) return std::nullopt;
+  ignition::math::Pose3d vp;
+  v.SemanticPose().Resolve(vp);  // relative to the link
+  shape->origin = to_iso(vp);
+  WorldVisual wv;
+  wv.name = v.Name();
+  wv.shape = *shape;
+  if (const sdf::Material* m = v.Material()) {
+    auto rgba = [](const ignition::math::Color& c) { return Eigen::Vector4d(c.R(), c.G(), c.B(), c.A()); };
+    wv.script_name = m->ScriptName();
+    const sdf::ElementPtr me = m->Element();
+    if (me && me->HasElement("diffuse")) {
+      wv.material.has_rgba = true;
+      wv.material.rgba = rgba(m->Diffuse());
+    }
+    if (me && me->HasElement("ambient")) {
+      wv.has_ambient = true;
+      wv.ambient = rgba(m->Ambient());
+    }
+    wv.material.name = wv.script_name;
+  }
+  return wv;
+}
+
 std::optional<Shape> to_shape(const sdf::Geometry& g, const std::string& where, int line,
                               std::vector<Diagnostic>* diagnostics) {
   Shape s;
@@ -243,26 +270,11 @@ Link convert_link(const sdf::Link& l, const std::string& where, RobotModel* m) {
   if (l.Element() && l.Element()->HasElement("gravity")) out.gazebo.gravity = l.Element()->Get<bool>("gravity");
   if (laser_retro) out.gazebo.laser_retro = laser_retro;
   for (uint64_t i = 0; i < l.VisualCount(); ++i) {
-    const sdf::Visual* v = l.VisualByIndex(i);
-    auto shape =
-        detail::to_shape(*v->Geom(), where + "/visual[" + v->Name() + "]", line_of(v->Element()), &m->diagnostics);
-    if (!shape) continue;
-    ignition::math::Pose3d vp;
-    v->SemanticPose().Resolve(vp);
-    shape->origin = to_iso(vp);
-    Visual vis;
-    vis.name = v->Name();
-    vis.shape = *shape;
-    if (const sdf::Material* mat = v->Material()) {
-      vis.material.name = mat->ScriptName();
-      if (mat->Element() && mat->Element()->HasElement("diffuse")) {
-        const auto d = mat->Diffuse();
-        vis.material.has_rgba = true;
-        vis.material.rgba = Eigen::Vector4d(d.R(), d.G(), d.B(), d.A());
-      }
-      if (out.gazebo.material.empty()) out.gazebo.material = mat->ScriptName();
-    }
-    out.visuals.push_back(std::move(vis));
+    const auto wv = detail::read_visual(*l.VisualByIndex(i), where, &m->diagnostics);
+    if (!wv) continue;
+    out.visuals.push_back({wv->name, wv->shape, wv->material});
+    // the link's material: its first visual's script ("" without a <material>)
+    if (out.gazebo.material.empty()) out.gazebo.material = wv->script_name;
   }
   return out;
 }

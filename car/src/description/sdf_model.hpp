@@ -32,6 +32,12 @@ void refuse_errors(const std::string& source, const sdf::Errors& errors, std::ve
 std::optional<Shape> to_shape(const sdf::Geometry& g, const std::string& where, int line,
                               std::vector<Diagnostic>* diagnostics);
 
+// A <visual> of link `where` ("model[M]/link[L]"): its shape in the link frame, its material (script name, rgba from
+// <diffuse>, <ambient>); nullopt for a geometry car does not draw (to_shape's warning appended). The one reader of
+// visuals, for robots and world models alike.
+std::optional<WorldVisual> read_visual(const sdf::Visual& v, const std::string& where,
+                                       std::vector<Diagnostic>* diagnostics);
+
 // Converts one model; the returned root_pose is the root link in the frame the model's own pose is given in.
 // Throws LoadError naming source, element and reason for what car cannot simulate.
 SdfRobot convert_sdf_model(const sdf::Model& m, const std::string& source, const LoadOptions& options);

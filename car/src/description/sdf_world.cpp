@@ -58,7 +58,6 @@ SurfaceFriction read_friction(const sdf::Collision& c) {
   return f;
 }
 
-Eigen::Vector4d rgba(const ignition::math::Color& c) { return Eigen::Vector4d(c.R(), c.G(), c.B(), c.A()); }
 
 WorldLink read_link(const sdf::Link& l, const std::string& model, WorldDescription* desc) {
   WorldLink wl;
@@ -92,32 +91,8 @@ WorldLink read_link(const sdf::Link& l, const std::string& model, WorldDescripti
     if (c->Element() && c->Element()->HasElement("laser_retro")) retro = c->Element()->Get<double>("laser_retro");
     wl.collisions.push_back({c->Name(), *shape, read_friction(*c), retro});
   }
-  for (uint64_t i = 0; i < l.VisualCount(); ++i) {
-    const sdf::Visual* v = l.VisualByIndex(i);
-    auto shape = detail::to_shape(*v->Geom(), where + "/visual[" + v->Name() + "]", line_of(v->Element()),
-                                   &desc->diagnostics);
-    if (!shape) continue;
-    ignition::math::Pose3d vp;
-    v->SemanticPose().Resolve(vp);
-    shape->origin = to_iso(vp);
-    WorldVisual wv;
-    wv.name = v->Name();
-    wv.shape = *shape;
-    if (const sdf::Material* m = v->Material()) {
-      wv.script_name = m->ScriptName();
-      const sdf::ElementPtr me = m->Element();
-      if (me && me->HasElement("diffuse")) {
-        wv.material.has_rgba = true;
-        wv.material.rgba = rgba(m->Diffuse());
-      }
-      if (me && me->HasElement("ambient")) {
-        wv.has_ambient = true;
-        wv.ambient = rgba(m->Ambient());
-      }
-      wv.material.name = wv.script_name;
-    }
-    wl.visuals.push_back(std::move(wv));
-  }
+  for (uint64_t i = 0; i < l.VisualCount(); ++i)
+    if (auto wv = detail::read_visual(*l.VisualByIndex(i), where, &desc->diagnostics)) wl.visuals.push_back(std::move(*wv));
   return wl;
 }
 
