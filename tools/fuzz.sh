@@ -12,13 +12,15 @@
 #   --cov      afterwards, the lines of src/model and src/description the corpora execute (llvm-cov)
 # The rule (test/fuzz/fuzz_common.hpp): an input loads or is refused with FILE[:LINE]: ELEMENT: REASON; never a
 # crash, a hang over 1 s, over 2 GB, or a non-finite state after the steps. Exits 1 when a target found an input
-# that breaks it (saved under test/fuzz/out/TARGET/).
+# that breaks it (saved under test/fuzz/out/TARGET/); exits 2 when something could not run: clang, the build, a
+# target that executed nothing (no binary, zero inputs; its CPU seconds are not counted) or a regression target
+# without its binary. .ci/run lets a finding of the smoke pass (1) and fails on 2.
 set -uo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT/car"
 # shellcheck source=tools/sanitizers/workspace.sh
 source "$ROOT/tools/sanitizers/workspace.sh"
-ensure_clang || { echo "sanitizers: could not install clang 14"; exit 1; }
+ensure_clang || { echo "sanitizers: could not install clang 14"; exit 2; }
 ALL=(urdf sdf_world sdf_model spawn ros_control flatten)
 secs=600 cov=0 build=1 recheck_only=0 save=0 regressions_only=0 targets=()
 for a in "$@"; do
@@ -50,9 +52,9 @@ if [ $build -eq 0 ]; then
 elif [ ! -f "$WS/build/Makefile" ]; then
   (cd "$WS" && CC=clang-14 CXX=clang++-14 catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
-    -DCATKIN_ENABLE_TESTING=ON -DCAR_SANITIZE=address,undefined -DCAR_FUZZ=ON -j"$JOBS" "${fuzz_targets[@]}" > build.log 2>&1) || { tail -n 40 "$WS/build.log"; exit 1; }
+    -DCATKIN_ENABLE_TESTING=ON -DCAR_SANITIZE=address,undefined -DCAR_FUZZ=ON -j"$JOBS" "${fuzz_targets[@]}" > build.log 2>&1) || { tail -n 40 "$WS/build.log"; exit 2; }
 else
-  make -C "$WS/build" -j"$JOBS" "${fuzz_targets[@]}" > "$WS/build.log" 2>&1 || { tail -n 40 "$WS/build.log"; exit 1; }
+  make -C "$WS/build" -j"$JOBS" "${fuzz_targets[@]}" > "$WS/build.log" 2>&1 || { tail -n 40 "$WS/build.log"; exit 2; }
 fi
 
 # ---- the regressions alone: each input once, in a fresh process per target -----------------------------------------
@@ -61,13 +63,14 @@ if [ $regressions_only -eq 1 ]; then
   for t in "${targets[@]}"; do
     inputs=(test/fuzz/regressions/"$t"/*)
     [ -e "${inputs[0]}" ] || continue
+    [ -x "$BIN/fuzz_$t" ] || { echo "fuzz: $t: FAILED: no binary $BIN/fuzz_$t: its regressions did not run"; broken=2; continue; }
     if LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
         "$BIN/fuzz_$t" -timeout=30 -rss_limit_mb=2048 "${inputs[@]}" > "$WS/regressions-$t.log" 2>&1; then
       echo "fuzz: $t: ${#inputs[@]} regression input(s) keep the rule"
     else
-      broken=1
       grep -m3 -B2 -A12 'ERROR\|RULE BROKEN\|runtime error' "$WS/regressions-$t.log"
       echo "fuzz: $t: FAILED: a regression input breaks the rule again ($WS/regressions-$t.log)"
+      [ $broken = 2 ] || broken=1
     fi
   done
   exit $broken
@@ -120,7 +123,7 @@ recheck() {  # recheck TARGET
 }
 
 # ---- fuzz, one target at a time on one core --------------------------------------------------------------------
-broken=0
+broken=0 idle=0
 summary=""
 for t in "${targets[@]}"; do
   # SECONDS 0: fuzz nothing (--cov or --save over the corpora there are); libFuzzer reads -max_total_time=0 as no limit
@@ -141,6 +144,11 @@ for t in "${targets[@]}"; do
   dict=(); [ "$t" = ros_control ] || dict=(-dict=test/fuzz/xml.dict)
   echo "fuzz: $t for $secs s ..."
   log="$WS/fuzz-$t.log"
+  if [ ! -x "$BIN/fuzz_$t" ]; then
+    idle=1; summary+="$t executed nothing (no binary); "
+    echo "fuzz: $t: FAILED: executed nothing: no binary $BIN/fuzz_$t"
+    continue
+  fi
   TIMEFORMAT='%U %S'
   cpu=$( { time LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=1 \
       UBSAN_OPTIONS=print_stacktrace=1 nice -n 10 "$BIN/fuzz_$t" -timeout="$TIMEOUT" -rss_limit_mb=2048 -max_len=65536 \
@@ -148,7 +156,14 @@ for t in "${targets[@]}"; do
       -max_total_time="$secs" -artifact_prefix="$out/" "${dict[@]}" "$corpus" "$seed" \
       > "$log" 2>&1; } 2>&1 )
   cpu=$(echo "$cpu" | awk '{printf "%.0f", $1 + $2}')
-  execs=$(grep -o 'exec/s: [0-9]*\|#[0-9]*' "$log" | grep -o '^#[0-9]*' | tail -n 1 | tr -d '#')
+  execs=$(grep -oE '^#[0-9]+' "$log" | tail -n 1 | tr -d '#')
+  # libFuzzer's count of executed inputs: none (a binary that would not start, no input run) is a failure, and
+  # the CPU seconds it spent are not fuzzing
+  if [ "${execs:-0}" -eq 0 ]; then
+    idle=1; summary+="$t executed nothing (${cpu} CPU s not counted); "
+    echo "fuzz: $t: FAILED: executed nothing (0 inputs; ${cpu} CPU s not counted): $(tail -n 3 "$log" | tr '\n' ' ')"
+    continue
+  fi
   recheck "$t"
   found=$(find "$out" -maxdepth 1 -type f \( -name 'crash-*' -o -name 'timeout-*' -o -name 'oom-*' -o -name 'leak-*' \) | wc -l)
   [ "$found" -eq 0 ] || { broken=1; grep -m3 -A12 'ERROR\|RULE BROKEN\|ALARM' "$log"; }
@@ -183,4 +198,5 @@ if [ $cov -eq 1 ]; then
 fi
 echo "fuzz: ${summary%; }"
 [ $broken -eq 0 ] && echo "fuzz: no input broke the rule" || echo "fuzz: FAILED: inputs that broke the rule are in test/fuzz/out/"
+[ $idle -eq 0 ] || { echo "fuzz: FAILED: a target executed nothing (above)"; exit 2; }
 exit $broken

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Runs the whole suite (tools/test.sh) N times in a row (default 3) while BUSY processes (default 2, at nice 0)
-# keep the CPU loaded, and reports each run's verdict. A suite whose tests wait on sim-time conditions, never for
-# a while, passes every time however slow the machine is; a test that depends on the machine's speed shows up as
-# a run that fails here and passes when the machine is quiet.
+# Runs the README's suite (tools/test.sh; CI's slower tiers, tools/test_slow.sh, are left out) N times in a row
+# (default 3) while BUSY processes (default 2, at nice 0) keep the CPU loaded, and reports each run's verdict. A
+# suite whose tests wait on sim-time conditions, never for a while, passes every time however slow the machine is;
+# a test that depends on the machine's speed shows up as a run that fails here and passes when the machine is quiet.
 #
 # Usage: bash tools/stress_test.sh [N]     Environment: BUSY=2
 # Exit status: 0 when every run passed. Logs: .ws/stress/run-I.log

@@ -9,8 +9,10 @@
 #                 repository (its devel space and venv), WS/src, WS/build and WS/devel are empty folders, the five
 #                 commands again and the suite's rostests (car/test/ros/*.test, copied into the installed
 #                 share/car/test) against the install space alone
-# Each check is one JUnit test case in --junit FILE (tools/test.sh adds it to the suite's verdict).
+# Each check is one JUnit test case in --junit FILE (tools/test_slow.sh, run by .ci/run, counts and floors them).
 # Usage: tools/test_workspace.sh [--junit FILE] [--keep] [--no-isolated] [--tests "a.test b.test"]
+# A check of step 5 that never ran (the namespace run died partway) is recorded as a failure
+# (CAR_WS_DIE_AFTER=N kills that run after N rostests, to see it).
 # Needs root or user namespaces (unshare) for step 5, Debian's ROS packages and the venv (tools/setup.sh).
 set -uo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -180,7 +182,11 @@ if [ -n "$INNER" ]; then
   five_commands install "$PREFIX/setup.bash"
   set +u; source "$PREFIX/setup.bash"; set -u
   export ROS_PACKAGE_PATH="$ROS_PACKAGE_PATH:$T/fixtures" ROS_HOME="$T/ros_home"
+  ran=0
   for t in $TESTS; do
+    # test hook: CAR_WS_DIE_AFTER=N kills this run after N rostests, as a crash partway would
+    [ "$ran" != "${CAR_WS_DIE_AFTER:-}" ] || kill -KILL $$
+    ran=$((ran + 1))
     t0=$SECONDS
     log="$LOGS/rostest-$t.log"
     timeout 900 rostest --text "$PREFIX/share/car/test/ros/$t" < /dev/null > "$log" 2>&1
@@ -213,4 +219,13 @@ if [ "$(id -u)" -eq 0 ]; then unshare -m bash "$0" "${inner_args[@]}" 2>&1 | tee
 else unshare -rm bash "$0" "${inner_args[@]}" 2>&1 | tee "$LOGS/inner.log"; fi
 grep -q install_space_alone "$T/results.tsv" ||
   record "install_space_alone_the_source_tree_hidden" 1 $SECONDS "no mount namespace (root or user namespaces needed): $(tail -n 5 "$LOGS/inner.log")"
+# the namespace run records each check only once it has finished: one that never ran (the run died partway, or
+# never started) is a failure too, so that a run cut short cannot pass with fewer checks
+planned=(install_roslaunch_car_sim install_roslaunch_gazebo_ros_empty_world install_rosrun_car_xacro
+  install_rosrun_xacro_xacro install_roslaunch_car_empty_world)
+for t in $TESTS; do planned+=("install_rostest_${t%.test}"); done
+for name in "${planned[@]}"; do
+  cut -f1 "$T/results.tsv" | grep -qxF "$name" ||
+    record "$name" 1 $SECONDS "never ran: the install-space run in the mount namespace ended before it (inner.log: $(tail -n 5 "$LOGS/inner.log"))"
+done
 finish
