@@ -6,11 +6,13 @@
 #include <sdf/Error.hh>
 #include <sdf/Geometry.hh>
 #include <sdf/Model.hh>
+#include <sdf/Visual.hh>
 
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "car_sim/description.hpp"
 #include "car_sim/sdf_model.hpp"
 
 namespace car_sim {
