@@ -27,7 +27,7 @@ DEB_PACKAGES=(
   libgeometry-msgs-dev python3-geometry-msgs libstd-srvs-dev python3-std-srvs libros-rosgraph-msgs-dev python3-rosgraph-msgs
   ros-message-generation ros-message-runtime python3-tf2-msgs libtf2-msgs-dev
   libvisualization-msgs-dev python3-visualization-msgs
-  libtrajectory-msgs-dev python3-trajectory-msgs python3-genmsg python3-rosservice
+  libtrajectory-msgs-dev python3-trajectory-msgs python3-genmsg python3-rosservice python3-rosnode
   libactionlib-dev python3-actionlib libactionlib-msgs-dev python3-actionlib-msgs ros-actionlib-msgs
   python3-rosparam libstd-msgs-dev python3-std-msgs
   ros-robot-state-publisher joint-state-publisher rviz rosbash

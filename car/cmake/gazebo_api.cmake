@@ -40,6 +40,12 @@ if(CATKIN_ENABLE_TESTING AND TARGET test_core)
   file(GLOB _car_gz_tests CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/gazebo/*.cpp)
   target_sources(test_core PRIVATE ${_car_gz_tests})
   target_compile_definitions(test_core PRIVATE CAR_GAZEBO_TEST_PLUGINS="${_car_gz_plugins}")
-  # the node runs the model push plug-in, found on GAZEBO_PLUGIN_PATH = that folder
-  add_rostest(test/ros/gazebo_plugin.test ARGS plugins:=${_car_gz_plugins} DEPENDENCIES car_gz_test_model_push)
+  # the node runs the model push plug-in as libcar_test_model_push.so in the devel space's lib/, where the loader
+  # looks through CMAKE_PREFIX_PATH as for any sourced workspace (no argument: the result file's name stays the
+  # same wherever the workspace is, for its floor in tools/test_floors.txt)
+  add_library(car_gz_test_node_push MODULE EXCLUDE_FROM_ALL test/gazebo/plugins/model_push.cc)
+  target_link_libraries(car_gz_test_node_push car_gazebo)
+  set_target_properties(car_gz_test_node_push PROPERTIES OUTPUT_NAME car_test_model_push PREFIX "lib"
+    LIBRARY_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/lib)
+  add_rostest(test/ros/gazebo_plugin.test DEPENDENCIES car_gz_test_node_push)
 endif()
