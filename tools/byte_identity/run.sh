@@ -1,17 +1,53 @@
 #!/bin/bash
-# Usage: run.sh WORKSPACE SCENARIO PORT (SCENARIO rover or arm): one recording of the ros_control fixtures with
-# WORKSPACE's sim_node, paused start, commands sent while paused, rtf 1; prints count and sha256 per topic.
+# Usage: run.sh WORKSPACE SCENARIO PORT: one recording with WORKSPACE's sim_node, paused start, the command sent
+# while paused, rtf 1; prints count and sha256 per topic. Exits 1, naming what it waited for, when a wait runs out.
+#   rover      the ros_control rover (diff_drive_controller), 3 s: odom, joint_states, tf
+#   arm        the ros_control arm (a follow_joint_trajectory goal), 3 s: joint_states, controller state, result
+#   sensors    sensor_bot.xacro (laser, depth camera, IMU with noise) driving in box_house, 2 s: every sensor topic
+#   box_house  the tutorial's seed car (car_camera_lidar02.xacro) driving in box_house, 3 s: odom, tf, scan
+# /tf counts from 1 s (TOPIC@FROM): sim_node advertises it on its first message, so the recorder joins late.
 # Run it with two builds and compare (docs/ARCHITECTURE.md, "Byte identity").
 ws=$1; sc=$2; port=$3; here=$(cd $(dirname $0) && pwd)
+case $sc in
+  rover) T=3.0; topics="/rover_velocity_controller/odom /joint_states /tf@1" ;;
+  arm) T=3.0; topics="/arm/joint_states /arm/arm_controller/state /arm/arm_controller/follow_joint_trajectory/result" ;;
+  sensors) T=2.0; topics="/scan /imu /camera/rgb/image_raw /camera/rgb/camera_info /camera/depth/image_raw
+                          /camera/depth/camera_info /camera/depth/points" ;;
+  box_house) T=3.0; topics="/odom /tf@1 /scan" ;;
+  *) echo "run.sh: unknown scenario '$sc' (rover, arm, sensors or box_house)" >&2; exit 2 ;;
+esac
 source $ws/devel/setup.bash
 export ROS_MASTER_URI=http://localhost:$port
-roscore -p $port > /tmp/bc_core_$port.log 2>&1 &
+# roscore and roslaunch each lead a process group of their own, ended by its id at the end
+setsid roscore -p $port > /tmp/bc_core_$port.log 2>&1 &
 core=$!
-sleep 3
-roslaunch -p $port $here/$sc.launch > /tmp/bc_launch_$port.log 2>&1 &
+stop() {
+  kill -INT -- -$launch 2>/dev/null
+  for i in $(seq 50); do kill -0 -- -$launch 2>/dev/null || break; sleep 0.1; done
+  kill -KILL -- -$launch 2>/dev/null
+  kill -INT -- -$core 2>/dev/null
+  for i in $(seq 50); do kill -0 -- -$core 2>/dev/null || break; sleep 0.1; done
+  kill -KILL -- -$core 2>/dev/null
+}
+# wait_for WHAT LIMIT COMMAND...: polls COMMAND until it succeeds; after LIMIT seconds fails naming WHAT
+wait_for() {
+  local what=$1 limit=$2; shift 2
+  local end=$((SECONDS + limit))
+  until "$@" >/dev/null 2>&1; do
+    if [ $SECONDS -ge $end ]; then
+      echo "run.sh $sc: timed out after ${limit} s waiting for $what (logs: /tmp/bc_core_$port.log, /tmp/bc_launch_$port.log)" >&2
+      stop; exit 1
+    fi
+    sleep 0.2
+  done
+}
+launch=$core
+wait_for "the master on port $port" 30 rosparam get /run_id
+setsid roslaunch -p $port $here/$sc.launch > /tmp/bc_launch_$port.log 2>&1 &
 launch=$!
-until rosparam get /use_sim_time >/dev/null 2>&1; do sleep 0.5; done
-if [ $sc = rover ]; then topics="/rover_velocity_controller/odom /joint_states /tf"; else topics="/arm/joint_states /arm/arm_controller/state /arm/arm_controller/follow_joint_trajectory/result"; fi
-timeout 120 /usr/bin/python3 $here/record.py $sc 3.0 $topics __name:=bytecheck
-kill -INT $launch; sleep 3; kill -9 $launch 2>/dev/null; kill -INT $core; sleep 1; kill -9 $core 2>/dev/null
-pkill -f "roslaunch -p $port" ; pkill -f "__master:=http://localhost:$port" ; true
+wait_for "the launch's parameters (/use_sim_time)" 60 rosparam get /use_sim_time
+timeout 400 /usr/bin/python3 $here/record.py $sc $T $topics __name:=bytecheck
+rc=$?
+[ $rc = 124 ] && echo "run.sh $sc: the recorder ran past 400 s" >&2
+stop
+exit $rc
