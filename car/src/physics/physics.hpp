@@ -78,7 +78,7 @@ class Physics {
   btMultiBodyDynamicsWorld& bullet();
   btRigidBody* world_model_body(const std::string& model, size_t link);
 
-  struct Impl;  // Bullet's objects (physics.cpp only)
+  struct Impl;  // Bullet's objects (physics_impl.hpp, private to physics/)
 
  private:
   std::unique_ptr<Impl> impl_;
