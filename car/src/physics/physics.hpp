@@ -99,7 +99,7 @@ class Robot {
   virtual void set_root_state(const ModelState& s) = 0;
   virtual bool has_link(const std::string& link) const = 0;
 
-  // ---- motion and contact (issue 11; implemented at the end of physics.cpp) ----
+  // ---- motion and contact (issue 11; implemented in bullet_robot.cpp) ----
   // A force [N] at a world point [m] and a torque [N m], world frame, on a link's body for the coming step.
   virtual void apply_wrench(const std::string& link, const Eigen::Vector3d& force, const Eigen::Vector3d& torque,
                             const Eigen::Vector3d& point) = 0;
