@@ -69,6 +69,7 @@ add_library(car_sim
   ${CAR_DIR}/src/physics/bodies.cpp
   ${CAR_DIR}/src/physics/physics.cpp
   ${CAR_DIR}/src/physics/bullet_robot.cpp
+  ${CAR_DIR}/src/physics/world_models.cpp
   ${CAR_DIR}/src/physics/plane_collision.cpp
   ${CAR_DIR}/src/physics/surface.cpp
   ${CAR_DIR}/src/physics/island_world.cpp
