@@ -73,6 +73,7 @@ add_library(car_sim
   ${CAR_DIR}/src/physics/plane_collision.cpp
   ${CAR_DIR}/src/physics/surface.cpp
   ${CAR_DIR}/src/physics/surface_solver.cpp
+  ${CAR_DIR}/src/physics/contact_rows.cpp
   ${CAR_DIR}/src/physics/island_world.cpp
   ${CAR_DIR}/src/physics/inverse_mass.cpp
   ${CAR_DIR}/src/physics/guard.cpp
@@ -98,7 +99,7 @@ set_target_properties(car_sim PROPERTIES POSITION_INDEPENDENT_CODE ON)
 # shared library's functions may otherwise be replaced at load time, so the compiler neither inlines nor calls them
 # directly. No arithmetic changes (docs/BENCH.md "Profile").
 set_source_files_properties(${CAR_DIR}/src/physics/surface.cpp ${CAR_DIR}/src/physics/surface_solver.cpp
-  ${CAR_DIR}/src/physics/inverse_mass.cpp PROPERTIES
+  ${CAR_DIR}/src/physics/contact_rows.cpp ${CAR_DIR}/src/physics/inverse_mass.cpp PROPERTIES
   COMPILE_OPTIONS -fno-semantic-interposition)
 # model:// falls back to the package's own models/ (sun, ground_plane), as Gazebo's built-ins
 # the source package: car's data folder in the devel space (an install finds share/car beside its library instead,
