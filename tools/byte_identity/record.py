@@ -2,7 +2,7 @@
 """Records every message of the given topics with stamp <= T sim seconds, after the scenario's scripted start, and
 prints per-topic count and sha256 of the serialized messages in arrival order (for before/after byte identity).
 Each wait is on an event or on sim time; one that runs past its limit exits 1 and names what it waited for."""
-import hashlib, io, sys, time
+import hashlib, struct, sys, time
 import rospy, actionlib
 from controller_manager_msgs.srv import ListControllers
 from geometry_msgs.msg import Twist
@@ -30,31 +30,33 @@ def wait(done, what, limit):
         time.sleep(0.05)
 
 
+def stamp_of(t, raw):
+    """The stamp [s] of a serialized message: its header's, or for a TFMessage its first transform's (None if empty).
+    Every recorded type but TFMessage opens with a std_msgs/Header: uint32 seq, uint32 secs, uint32 nsecs."""
+    at = 4
+    if t.rsplit('/', 1)[1] == 'tf':
+        if struct.unpack_from('<I', raw, 0)[0] == 0: return None
+        at = 8  # the array's length, then the first transform's header
+    secs, nsecs = struct.unpack_from('<II', raw, at)
+    return secs + nsecs * 1e-9
+
+
 def cb_for(t):
     def cb(m):
-        st = None
-        if hasattr(m, 'header'): st = m.header.stamp.to_sec()
-        elif hasattr(m, 'transforms') and m.transforms: st = m.transforms[0].header.stamp.to_sec()
+        raw = bytes(m._buff)  # the message as sent, not deserialised: a point cloud's 10 MB would hold the reader back
+        st = stamp_of(t, raw)
         if st is not None and st > T:
             past[t] = True
             return
         if st is not None and st < start[t]: return
-        b = io.BytesIO(); m.serialize(b); data[t].append(b.getvalue())
+        data[t].append(raw)
     return cb
 
-from nav_msgs.msg import Odometry
-from sensor_msgs.msg import CameraInfo, Image, Imu, JointState, LaserScan, PointCloud2
-from tf2_msgs.msg import TFMessage
-from control_msgs.msg import JointTrajectoryControllerState, FollowJointTrajectoryActionResult
-types = {'odom': Odometry, 'joint_states': JointState, 'tf': TFMessage, 'state': JointTrajectoryControllerState,
-         'result': FollowJointTrajectoryActionResult, 'scan': LaserScan, 'image_raw': Image, 'points': PointCloud2,
-         'camera_info': CameraInfo, 'imu': Imu}
 # topics that publish once (the action's result): done when that one message came, not when a later one did
 once = {t for t in topics if t.endswith('/result')}
 subs = []
 for t in topics:
-    cls = types[t.rsplit('/', 1)[1]]
-    subs.append(rospy.Subscriber(t, cls, cb_for(t), queue_size=1000000, tcp_nodelay=True, buff_size=2**26))
+    subs.append(rospy.Subscriber(t, rospy.AnyMsg, cb_for(t), queue_size=1000000, tcp_nodelay=True, buff_size=2**26))
 
 
 def wait_running(srv, names):
