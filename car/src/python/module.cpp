@@ -375,12 +375,12 @@ py::dict world_dict(const WorldDescription& d) {
 
 }  // namespace
 
-PYBIND11_MODULE(_core, m) {
-  m.doc() = "car_sim core: URDF model loading and plug-in configuration (no ROS).";
-  py::register_exception<LoadError>(m, "LoadError", PyExc_ValueError);
-  // a body whose state turned non-finite stops the world: car._core.SimulationError (a RuntimeError)
-  py::register_exception<SimulationError>(m, "SimulationError", PyExc_RuntimeError);
+// ---- the bindings, one function per area, called in this order by PYBIND11_MODULE ---------------------------
 
+namespace {
+
+// URDF robots: loading, inspecting (car check), the plug-in schemas and the inertia rule.
+void bind_urdf(py::module_& m) {
   m.def(
       "load_urdf_string",
       [](const std::string& xml, const std::string& source, bool throw_on_error) {
@@ -471,12 +471,20 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("mass"), py::arg("inertia"),
       "(code, reason) when the mass cannot be loaded (not > 0), ('', '') when it can.");
+}
+
+// model:// paths, the URI rule and the geometry car simulates.
+void bind_paths(py::module_& m) {
   m.def("model_path", &car_sim::model_path, "Where model:// looks, in order.");
   m.def("resolve_uri", py::overload_cast<const std::string&, const std::string&>(&car_sim::resolve_uri),
         py::arg("uri"), py::arg("base_dir") = "", "The include rule: a path for a URI, '' when not found.");
 
   m.def("simulated_geometry", &car_sim::simulated_geometry,
         "The SDF geometry elements car simulates; the others are ignored with a warning.");
+}
+
+// SDF worlds: the flattener, the loaders and the parsed WorldDescription.
+void bind_worlds(py::module_& m) {
   // The world flattener (world_tool): LoadError with the error's parts as attributes file, element and reason.
   m.def(
       "flatten_world",
@@ -531,6 +539,10 @@ PYBIND11_MODULE(_core, m) {
   m.def(
       "empty_world_description", [] { return std::make_shared<WorldDescription>(empty_world()); },
       "Gazebo's empty world (ground plane, sun) as a WorldDescription.");
+}
+
+// A parsed robot: the RobotModel handle.
+void bind_robot_model(py::module_& m) {
   py::class_<RobotModel, std::shared_ptr<RobotModel>>(
       m, "RobotModel", "A parsed URDF robot (const): pass it to World.spawn_model to spawn it without parsing again.")
       .def_property_readonly("name", [](const RobotModel& r) { return r.name; })
@@ -541,8 +553,11 @@ PYBIND11_MODULE(_core, m) {
         return std::make_shared<RobotModel>(load_urdf_string(xml, source));
       },
       py::arg("xml"), py::arg("source") = "<string>", "URDF text parsed once into a RobotModel. Raises LoadError.");
+}
 
-  py::class_<World>(m, "World", "A simulated world, stepped in fixed ticks. No ROS master needed.")
+// World: building it, spawning and removing models, stepping, resetting, commanding.
+void bind_world_run(py::class_<World>& world) {
+  world
       .def(py::init([](const WorldDescription& desc, int solver_iterations, uint64_t seed) {
              WorldOptions o;
              o.solver_iterations = solver_iterations;
@@ -595,7 +610,12 @@ PYBIND11_MODULE(_core, m) {
       .def("reset", &World::reset, "Time to zero, every model where it started (reset_simulation).")
       .def("reset_poses", &World::reset_poses, "Every model where it started, time goes on (reset_world).")
       .def("set_cmd_vel", py::overload_cast<const std::string&, double, double>(&World::set_cmd_vel), py::arg("robot"),
-           py::arg("v"), py::arg("w"), "Command the robot's drive plug-ins: v [m/s] forward, w [rad/s] about z.")
+           py::arg("v"), py::arg("w"), "Command the robot's drive plug-ins: v [m/s] forward, w [rad/s] about z.");
+}
+
+// World: model and link states, joints, contacts, plug-ins and what they measured.
+void bind_world_read(py::class_<World>& world) {
+  world
       .def("model_names", &World::model_names)
       .def("robot_names", &World::robot_names)
       .def("model_state", [](const World& w, const std::string& n) { return state_dict(w.model_state(n)); },
@@ -699,7 +719,10 @@ PYBIND11_MODULE(_core, m) {
             return out;
           },
           "Odometry samples of the drive plug-ins since the last call (base twist in the base frame).");
+}
 
+// Colours, the plug-in kinds, and stepping many worlds at once.
+void bind_tools(py::module_& m) {
   m.def(
       "gazebo_colours", [] { 
         py::dict d;
@@ -762,4 +785,21 @@ PYBIND11_MODULE(_core, m) {
       py::arg("worlds"), py::arg("n") = 1,
       "Advance each world n steps, the worlds on car's thread pool, without the GIL (docs/BATCH.md). ValueError "
       "when a world appears twice.");
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "car_sim core: URDF model loading and plug-in configuration (no ROS).";
+  py::register_exception<LoadError>(m, "LoadError", PyExc_ValueError);
+  // a body whose state turned non-finite stops the world: car._core.SimulationError (a RuntimeError)
+  py::register_exception<SimulationError>(m, "SimulationError", PyExc_RuntimeError);
+  bind_urdf(m);
+  bind_paths(m);
+  bind_worlds(m);
+  bind_robot_model(m);
+  py::class_<World> world(m, "World", "A simulated world, stepped in fixed ticks. No ROS master needed.");
+  bind_world_run(world);
+  bind_world_read(world);
+  bind_tools(m);
 }
