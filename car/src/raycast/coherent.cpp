@@ -133,6 +133,112 @@ int convex_hull(const double* u, const double* v, int n, double* hu, double* hv)
   return m;
 }
 
+// A triangle (vertices ps[id[0..2]], sensor frame) as the camera sees it: clipped at x = near, projected onto the
+// image [px], its rows, its plane (ns . p = h) and its normal facing the rays (R: sensor to world). False when it
+// is degenerate, seen edge-on, or outside the image.
+bool triangle_view(const std::vector<Eigen::Vector3f>& ps, const unsigned id[3], const Pinhole& cam,
+                   const Eigen::Matrix3f& R, int body, Poly* poly) {
+  const int W = cam.width, H = cam.height;
+  const double f = cam.f, cx = cam.cx, cy = cam.cy;
+  const float near = static_cast<float>(cam.near);
+  const Eigen::Vector3f& p0 = ps[id[0]];
+  const Eigen::Vector3f ns = (ps[id[1]] - p0).cross(ps[id[2]] - p0);
+  const float h = ns.dot(p0);
+  // degenerate, or its plane passes through the eye (seen edge-on)
+  if (h == 0.f || !std::isfinite(h)) return false;
+  // clip at x = near; a point on an edge is interpolated from the edge's lower vertex index, so the two
+  // triangles sharing an edge get the same point (no gap between them)
+  Eigen::Vector3d q[4];
+  int m = 0;
+  for (int e = 0; e < 3; ++e) {
+    const unsigned ia = id[e], ib = id[(e + 1) % 3];
+    const Eigen::Vector3f& A = ps[ia];
+    const Eigen::Vector3f& B = ps[ib];
+    const bool in_a = A.x() >= near, in_b = B.x() >= near;
+    if (in_a) q[m++] = A.cast<double>();
+    if (in_a != in_b) {
+      const Eigen::Vector3d lo = (ia < ib ? A : B).cast<double>(), hi = (ia < ib ? B : A).cast<double>();
+      Eigen::Vector3d c = lo + (hi - lo) * ((near - lo.x()) / (hi.x() - lo.x()));
+      c.x() = near;
+      q[m++] = c;
+    }
+  }
+  if (m < 3) return false;
+  poly->count = m;
+  double vmin = 1e300, vmax = -1e300, umin = 1e300, umax = -1e300;
+  for (int i = 0; i < m; ++i) {
+    poly->u[i] = cx - f * q[i].y() / q[i].x();
+    poly->v[i] = cy - f * q[i].z() / q[i].x();
+    vmin = std::min(vmin, poly->v[i]);
+    vmax = std::max(vmax, poly->v[i]);
+    umin = std::min(umin, poly->u[i]);
+    umax = std::max(umax, poly->u[i]);
+  }
+  if (umax < 0 || umin > W - 1) return false;
+  poly->row0 = static_cast<int>(std::max(0.0, std::ceil(vmin)));
+  poly->row1 = static_cast<int>(std::min(H - 1.0, std::floor(vmax)));
+  if (poly->row0 > poly->row1) return false;
+  poly->ns = ns;
+  poly->h = h;
+  // a ray meets the plane at t = h / (ns . d) > 0, so ns . d has the sign of h: -sign(h) ns faces every ray
+  poly->nw = (R * (h > 0 ? -ns : ns)).normalized();
+  poly->body = body;
+  return true;
+}
+
+// A primitive placed in the sensor frame (at) as the camera sees it: its box's image (the hull of the corners beyond
+// the near plane and of the box edges' crossings of it, grown by a thousandth of a pixel), its rows. False when
+// none of it is in the image.
+bool primitive_view(const Primitive& p, const Placed& at, const Pinhole& cam, int body, PrimView* pv) {
+  const int W = cam.width, H = cam.height;
+  const double f = cam.f, cx = cam.cx, cy = cam.cy;
+  const float near = static_cast<float>(cam.near);
+  pv->p = &p;
+  pv->Q = at.Q;
+  pv->o = at.o;
+  pv->body = body;
+  pv->nearest = at.nearest;
+  // its box's corners (sensor frame), those beyond the near plane and the box edges' crossings of it
+  Eigen::Vector3f corner[8];
+  box_corners(p, at.q, at.Q, corner);
+  double pu[20], pvv[20];
+  int m = 0;
+  auto add = [&](const Eigen::Vector3d& x) {
+    pu[m] = cx - f * x.y() / x.x();
+    pvv[m] = cy - f * x.z() / x.x();
+    ++m;
+  };
+  for (int c = 0; c < 8; ++c)
+    if (corner[c].x() >= near) add(corner[c].cast<double>());
+  for (int c = 0; c < 8; ++c)
+    for (int bit : {1, 2, 4}) {
+      if (c & bit) continue;
+      const Eigen::Vector3d A = corner[c].cast<double>(), B = corner[c | bit].cast<double>();
+      if ((A.x() >= near) == (B.x() >= near)) continue;
+      Eigen::Vector3d X2 = A + (B - A) * ((near - A.x()) / (B.x() - A.x()));
+      X2.x() = near;
+      add(X2);
+    }
+  if (m == 0) return false;
+  // the hull of their images, grown by a thousandth of a pixel: the primitive touches its box's faces
+  pv->count = convex_hull(pu, pvv, m, pv->u, pv->v);
+  double cu = 0, cv = 0;
+  for (int i = 0; i < pv->count; ++i) cu += pv->u[i] / pv->count, cv += pv->v[i] / pv->count;
+  double vmin = 1e300, vmax = -1e300, umin = 1e300, umax = -1e300;
+  for (int i = 0; i < pv->count; ++i) {
+    const double du = pv->u[i] - cu, dv = pv->v[i] - cv, len = std::hypot(du, dv);
+    if (len > 0) pv->u[i] += 1e-3 * du / len, pv->v[i] += 1e-3 * dv / len;
+    vmin = std::min(vmin, pv->v[i]);
+    vmax = std::max(vmax, pv->v[i]);
+    umin = std::min(umin, pv->u[i]);
+    umax = std::max(umax, pv->u[i]);
+  }
+  if (pv->count < 3 || umax < 0 || umin > W - 1) return false;
+  pv->row0 = static_cast<int>(std::max(0.0, std::ceil(vmin)));
+  pv->row1 = static_cast<int>(std::min(H - 1.0, std::floor(vmax)));
+  return pv->row0 <= pv->row1;
+}
+
 }  // namespace
 
 void RayScene::render(const Eigen::Vector3d& origin, const Eigen::Matrix3d& rotation, const Pinhole& cam,
@@ -167,99 +273,14 @@ void RayScene::render(const Eigen::Vector3d& origin, const Eigen::Matrix3d& rota
     const std::vector<Eigen::Vector3f>& ps = sensor_vertices(body.verts, X);
     for (size_t k = 0; k + 2 < body.idx.size(); k += 3) {
       const unsigned id[3] = {body.idx[k], body.idx[k + 1], body.idx[k + 2]};
-      const Eigen::Vector3f& p0 = ps[id[0]];
-      const Eigen::Vector3f ns = (ps[id[1]] - p0).cross(ps[id[2]] - p0);
-      const float h = ns.dot(p0);
-      // degenerate, or its plane passes through the eye (seen edge-on)
-      if (h == 0.f || !std::isfinite(h)) continue;
-      // clip at x = near; a point on an edge is interpolated from the edge's lower vertex index, so the two
-      // triangles sharing an edge get the same point (no gap between them)
-      Eigen::Vector3d q[4];
-      int m = 0;
-      for (int e = 0; e < 3; ++e) {
-        const unsigned ia = id[e], ib = id[(e + 1) % 3];
-        const Eigen::Vector3f& A = ps[ia];
-        const Eigen::Vector3f& B = ps[ib];
-        const bool in_a = A.x() >= near, in_b = B.x() >= near;
-        if (in_a) q[m++] = A.cast<double>();
-        if (in_a != in_b) {
-          const Eigen::Vector3d lo = (ia < ib ? A : B).cast<double>(), hi = (ia < ib ? B : A).cast<double>();
-          Eigen::Vector3d c = lo + (hi - lo) * ((near - lo.x()) / (hi.x() - lo.x()));
-          c.x() = near;
-          q[m++] = c;
-        }
-      }
-      if (m < 3) continue;
       Poly poly;
-      poly.count = m;
-      double vmin = 1e300, vmax = -1e300, umin = 1e300, umax = -1e300;
-      for (int i = 0; i < m; ++i) {
-        poly.u[i] = cx - f * q[i].y() / q[i].x();
-        poly.v[i] = cy - f * q[i].z() / q[i].x();
-        vmin = std::min(vmin, poly.v[i]);
-        vmax = std::max(vmax, poly.v[i]);
-        umin = std::min(umin, poly.u[i]);
-        umax = std::max(umax, poly.u[i]);
-      }
-      if (umax < 0 || umin > W - 1) continue;
-      poly.row0 = static_cast<int>(std::max(0.0, std::ceil(vmin)));
-      poly.row1 = static_cast<int>(std::min(H - 1.0, std::floor(vmax)));
-      if (poly.row0 > poly.row1) continue;
-      poly.ns = ns;
-      poly.h = h;
-      // a ray meets the plane at t = h / (ns . d) > 0, so ns . d has the sign of h: -sign(h) ns faces every ray
-      poly.nw = (R * (h > 0 ? -ns : ns)).normalized();
-      poly.body = static_cast<int>(b);
-      polys.push_back(poly);
+      if (triangle_view(ps, id, cam, R, static_cast<int>(b), &poly)) polys.push_back(poly);
     }
     for (const Primitive* p : body.prims) {
       const Placed at = place(*p, X);
       if (culled(at.q, p->bound())) continue;
       PrimView pv;
-      pv.p = p;
-      pv.Q = at.Q;
-      pv.o = at.o;
-      pv.body = static_cast<int>(b);
-      pv.nearest = at.nearest;
-      // its box's corners (sensor frame), those beyond the near plane and the box edges' crossings of it
-      Eigen::Vector3f corner[8];
-      box_corners(*p, at.q, at.Q, corner);
-      double pu[20], pvv[20];
-      int m = 0;
-      auto add = [&](const Eigen::Vector3d& x) {
-        pu[m] = cx - f * x.y() / x.x();
-        pvv[m] = cy - f * x.z() / x.x();
-        ++m;
-      };
-      for (int c = 0; c < 8; ++c)
-        if (corner[c].x() >= near) add(corner[c].cast<double>());
-      for (int c = 0; c < 8; ++c)
-        for (int bit : {1, 2, 4}) {
-          if (c & bit) continue;
-          const Eigen::Vector3d A = corner[c].cast<double>(), B = corner[c | bit].cast<double>();
-          if ((A.x() >= near) == (B.x() >= near)) continue;
-          Eigen::Vector3d X2 = A + (B - A) * ((near - A.x()) / (B.x() - A.x()));
-          X2.x() = near;
-          add(X2);
-        }
-      if (m == 0) continue;
-      // the hull of their images, grown by a thousandth of a pixel: the primitive touches its box's faces
-      pv.count = convex_hull(pu, pvv, m, pv.u, pv.v);
-      double cu = 0, cv = 0;
-      for (int i = 0; i < pv.count; ++i) cu += pv.u[i] / pv.count, cv += pv.v[i] / pv.count;
-      double vmin = 1e300, vmax = -1e300, umin = 1e300, umax = -1e300;
-      for (int i = 0; i < pv.count; ++i) {
-        const double du = pv.u[i] - cu, dv = pv.v[i] - cv, len = std::hypot(du, dv);
-        if (len > 0) pv.u[i] += 1e-3 * du / len, pv.v[i] += 1e-3 * dv / len;
-        vmin = std::min(vmin, pv.v[i]);
-        vmax = std::max(vmax, pv.v[i]);
-        umin = std::min(umin, pv.u[i]);
-        umax = std::max(umax, pv.u[i]);
-      }
-      if (pv.count < 3 || umax < 0 || umin > W - 1) continue;
-      pv.row0 = static_cast<int>(std::max(0.0, std::ceil(vmin)));
-      pv.row1 = static_cast<int>(std::min(H - 1.0, std::floor(vmax)));
-      if (pv.row0 <= pv.row1) prims.push_back(pv);
+      if (primitive_view(*p, at, cam, static_cast<int>(b), &pv)) prims.push_back(pv);
     }
   }
   const std::vector<Poly>& P = polys;
@@ -414,6 +435,46 @@ struct FanItem {
   double lo = 0, span = 0;                           // [rad] its angular span
 };
 
+// A primitive's angular span [rad] (it->lo, it->span), seen from the sensor: that of its box's cut by the plane
+// z = 0 (the box's edges' crossings); the whole turn when the sensor may be inside. q: its centre, it->Q its axes,
+// sensor frame. False when the box does not reach the plane.
+bool primitive_arc(const Primitive& p, const Eigen::Vector3f& q, FanItem* it) {
+  Eigen::Vector3f corner[8];
+  box_corners(p, q, it->Q, corner);
+  Eigen::Vector2d cut[12];
+  int m = 0;
+  for (int c = 0; c < 8; ++c)
+    for (int bit : {1, 2, 4}) {
+      if (c & bit) continue;
+      const Eigen::Vector3d A = corner[c].cast<double>(), B = corner[c | bit].cast<double>();
+      if ((A.z() > 0 && B.z() > 0) || (A.z() < 0 && B.z() < 0)) continue;
+      const double s = A.z() == B.z() ? 0.0 : A.z() / (A.z() - B.z());
+      cut[m++] = (A + (B - A) * s).head<2>();
+    }
+  if (m == 0) return false;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (int k = 0; k < m; ++k) centre += cut[k] / m;
+  double reach = 0;
+  for (int k = 0; k < m; ++k) reach = std::max(reach, (cut[k] - centre).norm());
+  if (centre.norm() <= reach * 1.001 + 1e-6) {
+    it->lo = -M_PI;
+    it->span = kTwoPi;
+  } else {
+    const double fc = std::atan2(centre.y(), centre.x());
+    double lo = 0, hi = 0;
+    for (int k = 0; k < m; ++k) {
+      double a = std::atan2(cut[k].y(), cut[k].x()) - fc;
+      if (a > M_PI) a -= kTwoPi;
+      if (a < -M_PI) a += kTwoPi;
+      lo = std::min(lo, a);
+      hi = std::max(hi, a);
+    }
+    it->lo = fc + lo;
+    it->span = hi - lo;
+  }
+  return true;
+}
+
 }  // namespace
 
 void RayScene::cast_fan(const Eigen::Vector3d& origin, const Eigen::Matrix3d& rotation, const float* directions,
@@ -486,41 +547,7 @@ void RayScene::cast_fan(const Eigen::Vector3d& origin, const Eigen::Matrix3d& ro
       it.o = at.o;
       it.body = static_cast<int>(b);
       it.dmin = at.nearest;
-      // its angular span: that of its box's cut by the plane z = 0 (the box's edges' crossings), seen from the
-      // sensor; the whole turn when the sensor may be inside
-      Eigen::Vector3f corner[8];
-      box_corners(*p, q, it.Q, corner);
-      Eigen::Vector2d cut[12];
-      int m = 0;
-      for (int c = 0; c < 8; ++c)
-        for (int bit : {1, 2, 4}) {
-          if (c & bit) continue;
-          const Eigen::Vector3d A = corner[c].cast<double>(), B = corner[c | bit].cast<double>();
-          if ((A.z() > 0 && B.z() > 0) || (A.z() < 0 && B.z() < 0)) continue;
-          const double s = A.z() == B.z() ? 0.0 : A.z() / (A.z() - B.z());
-          cut[m++] = (A + (B - A) * s).head<2>();
-        }
-      if (m == 0) continue;
-      Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-      for (int k = 0; k < m; ++k) centre += cut[k] / m;
-      double reach = 0;
-      for (int k = 0; k < m; ++k) reach = std::max(reach, (cut[k] - centre).norm());
-      if (centre.norm() <= reach * 1.001 + 1e-6) {
-        it.lo = -M_PI;
-        it.span = kTwoPi;
-      } else {
-        const double fc = std::atan2(centre.y(), centre.x());
-        double lo = 0, hi = 0;
-        for (int k = 0; k < m; ++k) {
-          double a = std::atan2(cut[k].y(), cut[k].x()) - fc;
-          if (a > M_PI) a -= kTwoPi;
-          if (a < -M_PI) a += kTwoPi;
-          lo = std::min(lo, a);
-          hi = std::max(hi, a);
-        }
-        it.lo = fc + lo;
-        it.span = hi - lo;
-      }
+      if (!primitive_arc(*p, q, &it)) continue;
       it.order = static_cast<int>(items.size());
       items.push_back(it);
     }
