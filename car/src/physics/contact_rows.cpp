@@ -29,6 +29,30 @@ int reserve_side(btMultiBodyJacobianData& data, btMultiBody* mb, int* vel_index,
   return ndof;
 }
 
+// A row's constraint force mixing (before the division by dt) and error reduction [-], as Bullet's row builders
+// pick them: a friction row the world's friction values; a normal row the contact's own cfm and erp, else those of
+// its stiffness and damping (cfm = 1 / (dt kp + kd), erp = dt kp / (dt kp + kd)), else the world's.
+void row_cfm_erp(const btManifoldPoint& cp, const btContactSolverInfo& info, bool friction, btScalar* cfm,
+                 btScalar* erp) {
+  if (friction) {
+    *cfm = info.m_frictionCFM;
+    *erp = info.m_frictionERP;
+  } else {
+    *cfm = info.m_globalCfm;
+    *erp = info.m_erp2;
+    if ((cp.m_contactPointFlags & BT_CONTACT_FLAG_HAS_CONTACT_CFM) ||
+        (cp.m_contactPointFlags & BT_CONTACT_FLAG_HAS_CONTACT_ERP)) {
+      if (cp.m_contactPointFlags & BT_CONTACT_FLAG_HAS_CONTACT_CFM) *cfm = cp.m_contactCFM;
+      if (cp.m_contactPointFlags & BT_CONTACT_FLAG_HAS_CONTACT_ERP) *erp = cp.m_contactERP;
+    } else if (cp.m_contactPointFlags & BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING) {
+      btScalar denom = info.m_timeStep * cp.m_combinedContactStiffness1 + cp.m_combinedContactDamping1;
+      if (denom < SIMD_EPSILON) denom = SIMD_EPSILON;
+      *cfm = btScalar(1) / denom;
+      *erp = (info.m_timeStep * cp.m_combinedContactStiffness1) / denom;
+    }
+  }
+}
+
 }  // namespace
 
 // ---- row set-up with factored mass matrices -------------------------------------------------------------------
@@ -163,25 +187,8 @@ void SurfaceSolver::setup_row(btMultiBodySolverConstraint& c, const btVector3& n
   relaxation = info.m_sor;
   const btScalar inv_dt = btScalar(1) / info.m_timeStep;
 
-  // cfm = 1 / (dt kp + kd), erp = dt kp / (dt kp + kd)
   btScalar cfm, erp;
-  if (friction) {
-    cfm = info.m_frictionCFM;
-    erp = info.m_frictionERP;
-  } else {
-    cfm = info.m_globalCfm;
-    erp = info.m_erp2;
-    if ((cp.m_contactPointFlags & BT_CONTACT_FLAG_HAS_CONTACT_CFM) ||
-        (cp.m_contactPointFlags & BT_CONTACT_FLAG_HAS_CONTACT_ERP)) {
-      if (cp.m_contactPointFlags & BT_CONTACT_FLAG_HAS_CONTACT_CFM) cfm = cp.m_contactCFM;
-      if (cp.m_contactPointFlags & BT_CONTACT_FLAG_HAS_CONTACT_ERP) erp = cp.m_contactERP;
-    } else if (cp.m_contactPointFlags & BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING) {
-      btScalar denom = info.m_timeStep * cp.m_combinedContactStiffness1 + cp.m_combinedContactDamping1;
-      if (denom < SIMD_EPSILON) denom = SIMD_EPSILON;
-      cfm = btScalar(1) / denom;
-      erp = (info.m_timeStep * cp.m_combinedContactStiffness1) / denom;
-    }
-  }
+  row_cfm_erp(cp, info, friction, &cfm, &erp);
   cfm *= inv_dt;
 
   // One multibody side: its Jacobian (Bullet's), its response to a unit impulse along it.
