@@ -87,6 +87,17 @@ const std::vector<std::string>& simulated_geometry() {
 
 namespace detail {
 
+Inertial read_inertial(const sdf::Link& l) {
+  const auto& in = l.Inertial();
+  Inertial ci;
+  ci.mass = in.MassMatrix().Mass();
+  ci.origin = to_iso(in.Pose());
+  const auto moi = in.MassMatrix().Moi();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) ci.inertia(r, c) = moi(r, c);
+  return ci;
+}
+
 // Rule 9: box, cylinder, sphere, mesh, plane; anything else is skipped with a warning (the world loader too).
 std::optional<WorldVisual> read_visual(const sdf::Visual& v, const std::string& where,
                                        std::vector<Diagnostic>* diagnostics) {
@@ -213,13 +224,7 @@ Link convert_link(const sdf::Link& l, const std::string& where, RobotModel* m) {
   Link out;
   out.name = l.Name();
   // Rule 3: the DOM fills SDF's defaults (mass 1 kg, inertia diag(1, 1, 1) kg m^2) when <inertial> is absent.
-  const auto& in = l.Inertial();
-  Inertial ci;
-  ci.mass = in.MassMatrix().Mass();
-  ci.origin = to_iso(in.Pose());
-  const auto moi = in.MassMatrix().Moi();
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) ci.inertia(r, c) = moi(r, c);
+  const Inertial ci = detail::read_inertial(l);
   // a mass <= 0 is refused (Gazebo 11's ODELink::UpdateMass throws); a tensor no rigid body has is a warning
   // saying what is simulated (docs/COMPAT-validation.md "Inertia")
   std::string code;
@@ -297,6 +302,51 @@ JointType to_joint_type(const sdf::Joint& j, const sdf::JointAxis* axis, const s
                                : "?";
   throw LoadError(source, line, where,
                   "joint type '" + type + "' is not simulated by car (revolute, continuous, prismatic and fixed are)");
+}
+
+// Rule 10: a model's plug-ins and its links' sensors through the URDF path's <gazebo> reader, so every kind resolves
+// the same; their lines are the SDF file's. mwhere: "model[M]".
+void read_plugins_and_sensors(const sdf::Model& sm, const std::string& source, const std::string& mwhere,
+                              RobotModel* m) {
+  std::string xml = "<robot>";
+  std::vector<int> plugin_lines, sensor_lines;
+  const sdf::ElementPtr me = sm.Element();
+  if (me && me->HasElement("plugin"))
+    for (sdf::ElementPtr p = me->GetElement("plugin"); p; p = p->GetNextElement("plugin")) {
+      xml += "<gazebo>" + p->ToString("") + "</gazebo>";
+      plugin_lines.push_back(line_of(p));
+    }
+  std::vector<std::pair<const sdf::Sensor*, std::string>> sensors;
+  for (uint64_t i = 0; i < sm.LinkCount(); ++i) {
+    const sdf::Link* l = sm.LinkByIndex(i);
+    for (uint64_t k = 0; k < l->SensorCount(); ++k) {
+      const sdf::Sensor* s = l->SensorByIndex(k);
+      xml += "<gazebo reference=\"" + xml_escape(l->Name()) + "\">" + s->Element()->ToString("") + "</gazebo>";
+      sensors.emplace_back(s, l->Name());
+    }
+  }
+  xml += "</robot>";
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
+    throw LoadError(source, 0, mwhere, std::string("cannot read plug-ins and sensors: ") + doc.ErrorStr());
+  const size_t before = m->diagnostics.size();
+  parse_gazebo_extensions(doc.RootElement(), m);
+  // findings of that reader name our elements, but its lines are of the rebuilt text: drop them
+  for (size_t i = before; i < m->diagnostics.size(); ++i) m->diagnostics[i].line = 0;
+  for (size_t i = 0; i < m->plugins.size() && i < plugin_lines.size(); ++i) m->plugins[i].line = plugin_lines[i];
+  for (auto& spec : m->sensors) {
+    for (const auto& [s, link] : sensors) {
+      if (s->Name() != spec.name || link != spec.link) continue;
+      spec.line = line_of(s->Element());
+      ignition::math::Pose3d sp;
+      if (s->SemanticPose().Resolve(sp, link).empty()) spec.pose = to_iso(sp);  // rule 4
+      int k = 0;
+      if (s->Element()->HasElement("plugin"))
+        for (sdf::ElementPtr p = s->Element()->GetElement("plugin"); p && k < static_cast<int>(spec.plugins.size());
+             p = p->GetNextElement("plugin"))
+          spec.plugins[k++].line = line_of(p);
+    }
+  }
 }
 
 }  // namespace
@@ -426,46 +476,7 @@ SdfRobot convert_sdf_model(const sdf::Model& sm, const std::string& source, cons
     out.root_pose = model_pose * to_iso(lp);
   }
 
-  // Rule 10: plug-ins and sensors through the URDF path's <gazebo> reader, so every kind resolves the same.
-  std::string xml = "<robot>";
-  std::vector<int> plugin_lines, sensor_lines;
-  const sdf::ElementPtr me = sm.Element();
-  if (me && me->HasElement("plugin"))
-    for (sdf::ElementPtr p = me->GetElement("plugin"); p; p = p->GetNextElement("plugin")) {
-      xml += "<gazebo>" + p->ToString("") + "</gazebo>";
-      plugin_lines.push_back(line_of(p));
-    }
-  std::vector<std::pair<const sdf::Sensor*, std::string>> sensors;
-  for (uint64_t i = 0; i < sm.LinkCount(); ++i) {
-    const sdf::Link* l = sm.LinkByIndex(i);
-    for (uint64_t k = 0; k < l->SensorCount(); ++k) {
-      const sdf::Sensor* s = l->SensorByIndex(k);
-      xml += "<gazebo reference=\"" + xml_escape(l->Name()) + "\">" + s->Element()->ToString("") + "</gazebo>";
-      sensors.emplace_back(s, l->Name());
-    }
-  }
-  xml += "</robot>";
-  tinyxml2::XMLDocument doc;
-  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
-    throw LoadError(source, 0, mwhere, std::string("cannot read plug-ins and sensors: ") + doc.ErrorStr());
-  const size_t before = m.diagnostics.size();
-  parse_gazebo_extensions(doc.RootElement(), &m);
-  // findings of that reader name our elements, but its lines are of the rebuilt text: drop them
-  for (size_t i = before; i < m.diagnostics.size(); ++i) m.diagnostics[i].line = 0;
-  for (size_t i = 0; i < m.plugins.size() && i < plugin_lines.size(); ++i) m.plugins[i].line = plugin_lines[i];
-  for (auto& spec : m.sensors) {
-    for (const auto& [s, link] : sensors) {
-      if (s->Name() != spec.name || link != spec.link) continue;
-      spec.line = line_of(s->Element());
-      ignition::math::Pose3d sp;
-      if (s->SemanticPose().Resolve(sp, link).empty()) spec.pose = to_iso(sp);  // rule 4
-      int k = 0;
-      if (s->Element()->HasElement("plugin"))
-        for (sdf::ElementPtr p = s->Element()->GetElement("plugin"); p && k < static_cast<int>(spec.plugins.size());
-             p = p->GetNextElement("plugin"))
-          spec.plugins[k++].line = line_of(p);
-    }
-  }
+  read_plugins_and_sensors(sm, source, mwhere, &m);
 
   detail::find_world_anchor(&m);
   if (options.throw_on_error)

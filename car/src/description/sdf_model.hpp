@@ -40,6 +40,10 @@ std::optional<Shape> to_shape(const sdf::Geometry& g, const std::string& where, 
 std::optional<WorldVisual> read_visual(const sdf::Visual& v, const std::string& where,
                                        std::vector<Diagnostic>* diagnostics);
 
+// A link's <inertial> as the DOM gives it: SDF's default (1 kg, unit inertia at the link origin) when absent (Rule 3).
+// The one reader of inertials, for robots and world models alike.
+Inertial read_inertial(const sdf::Link& l);
+
 // Converts one model; the returned root_pose is the root link in the frame the model's own pose is given in.
 // Throws LoadError naming source, element and reason for what car cannot simulate.
 SdfRobot convert_sdf_model(const sdf::Model& m, const std::string& source, const LoadOptions& options);

@@ -67,17 +67,8 @@ WorldLink read_link(const sdf::Link& l, const std::string& model, WorldDescripti
   wl.pose = to_iso(p);
   // <gravity>false</gravity>: SDF's per-link switch; the link feels no gravity (docs/COMPAT-sdf.md)
   if (l.Element() && l.Element()->HasElement("gravity")) wl.gravity = l.Element()->Get<bool>("gravity");
-  const auto& in = l.Inertial();
   // SDF's default when <inertial> is absent: 1 kg, unit inertia (docs/COMPAT-sdf.md 3); the DOM fills it in
-  {
-    Inertial ci;
-    ci.mass = in.MassMatrix().Mass();
-    ci.origin = to_iso(in.Pose());
-    const auto moi = in.MassMatrix().Moi();
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) ci.inertia(r, c) = moi(r, c);
-    wl.inertial = ci;
-  }
+  wl.inertial = detail::read_inertial(l);
   const std::string where = "model[" + model + "]/link[" + l.Name() + "]";
   for (uint64_t i = 0; i < l.CollisionCount(); ++i) {
     const sdf::Collision* c = l.CollisionByIndex(i);
