@@ -139,12 +139,7 @@ Eigen::Isometry3d RobotModel::link_pose_in_root(const std::string& link) const {
 }
 
 namespace {
-std::string fmt(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
+std::string fmt(double v) { return detail::short_number(v); }
 
 std::string fmt3(const Eigen::Vector3d& v) { return fmt(v.x()) + " " + fmt(v.y()) + " " + fmt(v.z()); }
 

@@ -32,12 +32,7 @@ void refuse_entities(const tinyxml2::XMLDocument& doc, const std::string& source
 
 namespace {
 
-std::string num(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
+std::string num(double v) { return short_number(v); }
 
 // What car does with a degenerate shape (a warning, as Gazebo 11 loads it), by the element's kind.
 std::string left_out(bool visual) {
@@ -53,14 +48,6 @@ bool finite_number(const std::string& tok, double* out) {
   if (end != tok.c_str() + tok.size() || !std::isfinite(v)) return false;
   *out = v;
   return true;
-}
-
-// A limit as the schemas write it: "8192 px", "100000".
-std::string limit_text(double v, const char* unit) {
-  std::ostringstream os;
-  os.precision(10);
-  os << v;
-  return os.str() + (*unit ? std::string(" ") + unit : "");
 }
 
 // The text of the element at path below e (nullptr when absent) and its value when it is a positive finite number.
@@ -101,7 +88,7 @@ void check_sensor_limits(const tinyxml2::XMLElement* sensor, const std::string& 
       const std::string key = std::string("camera/") + sides[i];
       if (side[i] > limits::kCameraSideMax)
         fail(key, key + " " + trim(text_of(child_at(cam, sides[i]))) + " is above the limit " +
-                      limit_text(limits::kCameraSideMax, "px"));
+                      limits::text(limits::kCameraSideMax, "px"));
     }
     const double px = side[0] * side[1];
     if (px > limits::kCameraPixelsMax)
@@ -121,7 +108,7 @@ void check_sensor_limits(const tinyxml2::XMLElement* sensor, const std::string& 
       const std::string key = std::string(ray) + "/" + axes[i];
       if (n[i] > limits::kRaySamplesMax)
         fail(key, key + " " + trim(text_of(child_at(r, axes[i]))) + " is above the limit " +
-                      limit_text(limits::kRaySamplesMax, ""));
+                      limits::text(limits::kRaySamplesMax, ""));
     }
     const double rays = n[0] * n[1] * std::max(1.0, n[2] * n[3]);
     if (rays > limits::kRaysPerScanMax)
@@ -689,4 +676,12 @@ void validate_world(WorldDescription* d) {
 }
 
 }  // namespace detail
+
+std::string limits::text(double v, const char* unit) {
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str() + (*unit ? std::string(" ") + unit : "");
+}
+
 }  // namespace car_sim

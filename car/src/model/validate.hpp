@@ -42,6 +42,9 @@ constexpr double kRaySamplesMax = 100000;
 constexpr double kRaysPerScanMax = 1000000;
 constexpr double kRaysPerSecondMax = 1e8;
 
+// A limit as the error messages write it: "8192 px", "100000" (10 significant digits, the unit after a space).
+std::string text(double v, const char* unit);
+
 }  // namespace limits
 
 namespace detail {

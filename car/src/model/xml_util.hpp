@@ -14,6 +14,8 @@ namespace car_sim {
 namespace detail {
 
 std::string trim(const std::string& s);
+// A number as the load messages write it: 6 significant digits ("0.001", "1e+06").
+std::string short_number(double v);
 std::vector<std::string> split_ws(const std::string& s);
 
 // Parses a decimal number; nullopt when the whole text is not one finite number.

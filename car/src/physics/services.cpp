@@ -6,15 +6,10 @@
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 
+#include "convert.hpp"
+
 namespace car_sim {
 namespace physics {
-
-namespace {
-
-btVector3 bt(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.z()); }
-Eigen::Vector3d eig(const btVector3& v) { return Eigen::Vector3d(v.x(), v.y(), v.z()); }
-
-}  // namespace
 
 void set_joint_positions(Robot& robot, const std::map<int, double>& positions) {
   btMultiBody* mb = robot.multibody();

@@ -9,6 +9,7 @@
 
 #include "car_sim/plugin.hpp"
 #include "car_sim/shared_plugin.hpp"
+#include "validate.hpp"
 #include "xml_util.hpp"
 
 namespace car_sim {
@@ -28,23 +29,16 @@ std::string strip_slash(const std::string& s) {
   return s.substr(i);
 }
 
-std::string limit_text(double v, const char* unit) {
-  std::ostringstream os;
-  os.precision(10);
-  os << v;
-  return os.str() + (*unit ? std::string(" ") + unit : "");
-}
-
 // A value outside its key's stated limits: a load error naming the key, the value and the limit.
 void check_limits(const RobotModel& m, const ParamDef& def, const std::string& value, const std::string& elem,
                   int line) {
   const double v = *detail::parse_number(value);
   if (v > def.max)
     throw LoadError(m.source, line, elem,
-                    std::string(def.key) + " " + detail::trim(value) + " is above the limit " + limit_text(def.max, def.unit));
+                    std::string(def.key) + " " + detail::trim(value) + " is above the limit " + limits::text(def.max, def.unit));
   if (v < def.min)
     throw LoadError(m.source, line, elem,
-                    std::string(def.key) + " " + detail::trim(value) + " is below the limit " + limit_text(def.min, def.unit));
+                    std::string(def.key) + " " + detail::trim(value) + " is below the limit " + limits::text(def.min, def.unit));
 }
 
 // Resolves schema keys from params; bad values are load errors naming element and key.
