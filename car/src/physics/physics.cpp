@@ -1,6 +1,6 @@
-// The Bullet world: robots as btMultiBody (reduced coordinates, fixed joints merged), world models as rigid
-// bodies and static objects, Gazebo's friction rule, the wheel and ball-caster contact rules, motors, and the
-// ray scene mirroring the collision geometry.
+// Physics's calls (physics.hpp): the Bullet world built with Gazebo's friction rule, robots added and removed
+// (bullet_robot.cpp), the step, contacts, and the ray scene mirroring the collision geometry. World models:
+// world_models.cpp; the room's map: docs/ARCHITECTURE.md "The physics room".
 #include "physics.hpp"
 
 #include <btBulletDynamicsCommon.h>

@@ -1,4 +1,5 @@
-// Gazebo's surface rules on Bullet; the rules are written down in docs/COMPAT-physics.md.
+// Gazebo's surface rules on Bullet (docs/COMPAT-physics.md): surfaces, the pair rules, and each manifold's conversion
+// into rows (set up in contact_rows.cpp, solved in surface_solver.cpp).
 #include "surface.hpp"
 
 #include <algorithm>
