@@ -57,7 +57,7 @@ TEST(Zoo, MeshBotRestsAtTheHeightItsMeshGives) {
   w.spawn(zoo("mesh_bot.urdf"), "mesh_bot", at(0, 0, 0) * Eigen::Translation3d(0, 0, 0.2));
   w.step(2000);  // 2 s: dropped 0.15 m, settled
   // the STL box is 0.1 m high, centred on base_link: its bottom at -0.05 m, so base_link rests at z = 0.05 m,
-  // plus Bullet's 0.0005 m hull margin (physics.cpp kMargin): 0.0505 m, within 2 mm
+  // plus Bullet's 0.0005 m hull margin (physics_impl.hpp kMargin): 0.0505 m, within 2 mm
   EXPECT_NEAR(w.link_pose("mesh_bot", "base_link").translation().z(), 0.0505, 0.002);
 }
 
