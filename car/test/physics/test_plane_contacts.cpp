@@ -1,4 +1,4 @@
-// Convex shapes on a plane (src/physics/plane_collision.cpp: SpherePlaneAlgorithm, ConvexPlaneAlgorithm, BoxPlaneAlgorithm;
+// Convex shapes on a plane (physics/plane_collision.cpp: SpherePlaneAlgorithm, ConvexPlaneAlgorithm, BoxPlaneAlgorithm;
 // docs/COMPAT-physics.md "Contact points"): a sphere touches at one point under its centre along the plane's
 // normal, and a shape whose narrow phase is skipped while it is clearly above the plane still lands on it. g = 10
 // m/s^2, dt = 1 ms; expected values by hand in the comments.
