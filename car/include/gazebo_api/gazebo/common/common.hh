@@ -4,6 +4,7 @@
 #include "gazebo/common/Console.hh"
 #include "gazebo/common/Event.hh"
 #include "gazebo/common/Events.hh"
+#include "gazebo/common/Exception.hh"
 #include "gazebo/common/PID.hh"
 #include "gazebo/common/Plugin.hh"
 #include "gazebo/common/Time.hh"
