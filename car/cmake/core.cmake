@@ -78,6 +78,7 @@ add_library(car_sim
   ${CAR_DIR}/src/physics/inverse_mass.cpp
   ${CAR_DIR}/src/physics/guard.cpp
   ${CAR_DIR}/src/physics/services.cpp
+  ${CAR_DIR}/src/physics/velocity_motor.cpp
   ${CAR_DIR}/src/raycast/raycast.cpp
   ${CAR_DIR}/src/raycast/coherent.cpp
   ${CAR_DIR}/src/mesh/mesh.cpp

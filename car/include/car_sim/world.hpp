@@ -213,6 +213,12 @@ class World {
 
   // Whether a step integrates the physics (Gazebo's World::PhysicsEnabled; joint_pose_trajectory switches it off).
   bool physics_enabled() const;
+  // Switches it (Gazebo's World::SetPhysicsEnabled): off, a step advances time and calls the plug-ins only.
+  void set_physics_enabled(bool on);
+  // What add_link_wrench and the plug-ins added to a robot's link in the current step (cleared as a step starts):
+  // force [N] and torque [N m] about the link's body's centre of mass, world frame (Gazebo's Link::WorldForce,
+  // WorldTorque). Throws for an unknown robot or link.
+  Wrench link_applied_wrench(const LinkRef& link) const;
   // Per-step hooks, called in the order they were added. BeforePhysics: at the start of every step, before the
   // plug-ins' pre_physics, with the tick the step starts from; AfterPhysics: after the physics step, before the
   // plug-ins' track, with the tick reached. A hook may call the commands below; one added inside a hook is first
@@ -241,6 +247,23 @@ class World {
   // Sets a link's velocity now: `linear` [m/s] of its centre of mass and `angular` [rad/s], world frame (Gazebo's
   // Link::SetLinearVel / SetAngularVel). The link's whole model takes that rigid motion; joint speeds are kept.
   void set_link_velocity(const LinkRef& link, const Eigen::Vector3d& linear, const Eigen::Vector3d& angular);
+  // A velocity motor on a moving joint, as ODE's joint motor (Gazebo's Joint::SetParam "vel", "fmax", "friction";
+  // docs/PLUGINS.md): every step it drives the joint's rate to `velocity` [rad/s] or [m/s] with at most
+  // `max_effort` [N m] or [N], so it reaches the target within the step when that effort suffices. max_effort 0: off.
+  // Not capped by the joint's <limit effort> or <limit velocity> (ODE's motor is not). Kept until changed, over
+  // resets too. Throws for an unknown robot or joint, a non-finite number or max_effort < 0.
+  struct JointMotor {
+    double velocity = 0.0;    // [rad/s] or [m/s]
+    double max_effort = 0.0;  // [N m] or [N]
+  };
+  void set_joint_motor(const std::string& robot, const std::string& joint, const JointMotor& motor);
+  // The motor's setting; {0, 0} before any set_joint_motor.
+  JointMotor joint_motor(const std::string& robot, const std::string& joint) const;
+  // Gazebo's Link::SetGravityMode: with `on` false, gravity no longer acts on the link's mass (at its centre of mass;
+  // a body's top link carries the links merged into it by fixed joints, as Gazebo lumps them), from the coming step
+  // on. Kept over resets. Throws for an unknown robot or link.
+  void set_link_gravity(const LinkRef& link, bool on);
+  bool link_gravity(const LinkRef& link) const;
 
  private:
   struct Impl;

@@ -9,6 +9,7 @@
 #include "car_sim/shared_plugin.hpp"
 #include "car_sim/world.hpp"
 #include "gazebo/common/Events.hh"
+#include "gazebo/common/Exception.hh"
 #include "gazebo/common/Plugin.hh"
 #include "gazebo/physics/Model.hh"
 #include "gazebo/physics/World.hh"
@@ -153,6 +154,11 @@ class Host : public car_sim::SharedPluginHost {
       run->plugin->Init();
     } catch (const std::exception& e) {
       throw std::runtime_error(std::string("Load threw: ") + e.what());
+    } catch (const gazebo::common::Exception& e) {
+      // gzthrow's text ends in a newline
+      std::string what = e.GetErrorStr();
+      while (!what.empty() && what.back() == '\n') what.pop_back();
+      throw std::runtime_error("Load threw: " + what);
     } catch (...) {
       throw std::runtime_error("Load threw an exception that is not a std::exception");
     }

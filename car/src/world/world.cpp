@@ -16,6 +16,7 @@
 #include "guard.hpp"
 #include "physics.hpp"
 #include "services.hpp"
+#include "velocity_motor.hpp"
 
 namespace car_sim {
 
@@ -101,6 +102,12 @@ struct World::Impl : WorldAccess {
     }
     Wrench joint_wrench(int j) const override { return body->joint_wrench(j); }
     std::vector<LinkContact> link_contacts(const std::string& l) const override { return body->link_contacts(l); }
+
+    // ---- users' own plug-ins: ODE's joint motors (World::set_joint_motor) and links without gravity. The settings
+    // are state kept over a rebuild; the motors are remade from them with the bodies.
+    std::map<int, JointMotor> joint_motors;                           // multibody joint index -> setting
+    std::map<int, std::unique_ptr<physics::VelocityMotor>> velocity_motors;  // its motor in the physics
+    std::set<std::string> weightless;                                 // links with gravity off
   };
 
   Impl(const WorldDescription& d, const WorldOptions& o) : desc(d), options(o) {
@@ -179,7 +186,10 @@ struct World::Impl : WorldAccess {
   // order, every plug-in reset; time_went_back (reset_simulation): every schedule restarts from `tick`, else
   // (reset_world) only those of the plug-ins that say so.
   void rebuild(const std::set<std::string>& removed, uint64_t tick, bool time_went_back) {
-    for (auto& r : robots) r->body = nullptr;
+    for (auto& r : robots) {
+      r->velocity_motors.clear();
+      r->body = nullptr;
+    }
     phys.reset();
     phys = std::make_unique<physics::Physics>(desc, physics_options(), removed);
     apply_settings();
@@ -187,6 +197,7 @@ struct World::Impl : WorldAccess {
       r->body = &phys->add_robot(r->info.model, r->info.name, r->info.spawn_pose, r->driven);
       for (const auto& [joint, effort] : r->motor_claims) r->body->add_motor(joint, effort);
       for (int j : r->wrench_claims) r->body->enable_joint_wrench(j);
+      for (const auto& [j, m] : r->joint_motors) make_velocity_motor(*r, j, m);
       for (auto& i : r->plugins) {
         i.plugin->reset();
         i.queue.clear();
@@ -214,6 +225,20 @@ struct World::Impl : WorldAccess {
   int solver_iterations = -1;  // -1: the options' value
 
   void apply_jobs(uint64_t tick);
+  // ODE's motor on a robot's joint, made on first use (World::set_joint_motor).
+  void make_velocity_motor(RobotRt& r, int j, const JointMotor& m) {
+    auto& motor = r.velocity_motors[j];
+    if (!motor) motor = std::make_unique<physics::VelocityMotor>(*phys, *r.body, j);
+    motor->set(m.velocity, m.max_effort, desc.step_size);
+  }
+  // Gravity taken off the links that have it off: a force -m g at each one's centre of mass [N], world frame.
+  void cancel_gravity(World& w) {
+    for (auto& r : robots)
+      for (const auto& l : r->weightless) {
+        const LinkProperties p = w.link_properties({r->info.name, l, true});
+        r->body->apply_wrench(l, -p.mass * env.gravity, Eigen::Vector3d::Zero(), r->body->link_pose(l) * p.com);
+      }
+  }
   void apply_settings() {
     physics::set_gravity(*phys, env.gravity);
     if (solver_iterations > 0) physics::set_solver_iterations(*phys, solver_iterations);
@@ -331,6 +356,7 @@ void World::remove(const std::string& name) {
   e.erase(std::remove_if(e.begin(), e.end(), [&](const Impl::EffortJob& j) { return j.robot == name; }), e.end());
   for (auto it = robots.begin(); it != robots.end(); ++it) {
     if ((*it)->info.name != name) continue;
+    (*it)->velocity_motors.clear();
     impl_->phys->remove_robot(name);
     robots.erase(it);
     return;
@@ -364,6 +390,7 @@ void World::step(uint64_t n) {
     for (auto& r : impl_->robots)
       for (auto& i : r->plugins) i.plugin->pre_physics(ctx, *r);
     impl_->apply_jobs(tick_);
+    impl_->cancel_gravity(*this);
     try {
       if (impl_->physics_on) impl_->phys->step(dt);
     } catch (const physics::NonFiniteState& e) {
@@ -742,6 +769,7 @@ void World::set_link_state(const LinkRef& link, const ModelState& target) {
 LinkProperties World::link_properties(const LinkRef& link) const {
   LinkProperties p;
   if (const auto* r = impl_->find(link.model)) {
+    p.gravity = r->weightless.count(link.link) == 0;
     // a body's top link carries the merged mass of the links fixed to it, as Gazebo's URDF import lumps them
     const detail::BodyTree tree = detail::build_bodies(r->info.model);
     for (const auto& b : tree.bodies)
@@ -1053,6 +1081,55 @@ std::optional<uint64_t> steps_until(double now, double t, double dt) {
   if (!std::isfinite(t) || !(t > now)) return std::nullopt;
   // 1e-9 of a step: a time on a step's end, less its rounding, is that step
   return static_cast<uint64_t>(std::ceil((t - now) / dt - 1e-9));
+}
+
+}  // namespace car_sim
+
+namespace car_sim {
+
+// ---- users' own plug-ins: ODE's joint motor, gravity mode ----------------------------------------------------
+
+void World::set_joint_motor(const std::string& robot, const std::string& joint, const JointMotor& motor) {
+  if (!std::isfinite(motor.velocity) || !std::isfinite(motor.max_effort))
+    throw std::invalid_argument("a joint motor's velocity and max effort must be finite numbers");
+  if (motor.max_effort < 0.0)
+    throw std::invalid_argument("a joint motor's max effort must be >= 0 (got " + std::to_string(motor.max_effort) + ")");
+  const auto [r, j] = moving_joint(*impl_, robot, joint);
+  r->joint_motors[j] = motor;
+  impl_->make_velocity_motor(*r, j, motor);
+}
+
+World::JointMotor World::joint_motor(const std::string& robot, const std::string& joint) const {
+  const auto [r, j] = moving_joint(*impl_, robot, joint);
+  const auto it = r->joint_motors.find(j);
+  return it == r->joint_motors.end() ? JointMotor() : it->second;
+}
+
+void World::set_link_gravity(const LinkRef& link, bool on) {
+  auto* r = impl_->find(link.model);
+  if (!r) throw std::invalid_argument("no robot named '" + link.model + "'");
+  if (!r->body->has_link(link.link))
+    throw std::invalid_argument("model '" + link.model + "' has no link '" + link.link + "'");
+  if (on)
+    r->weightless.erase(link.link);
+  else
+    r->weightless.insert(link.link);
+}
+
+void World::set_physics_enabled(bool on) { impl_->physics_on = on; }
+
+Wrench World::link_applied_wrench(const LinkRef& link) const {
+  auto* r = impl_->find(link.model);
+  if (!r) throw std::invalid_argument("no robot named '" + link.model + "'");
+  return r->applied_wrench(link.link);
+}
+
+bool World::link_gravity(const LinkRef& link) const {
+  auto* r = impl_->find(link.model);
+  if (!r) throw std::invalid_argument("no robot named '" + link.model + "'");
+  if (!r->body->has_link(link.link))
+    throw std::invalid_argument("model '" + link.model + "' has no link '" + link.link + "'");
+  return r->weightless.count(link.link) == 0;
 }
 
 }  // namespace car_sim

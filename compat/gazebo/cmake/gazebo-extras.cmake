@@ -22,6 +22,14 @@ endif()
 get_target_property(_gz_sdf_inc sdformat12::sdformat12 INTERFACE_INCLUDE_DIRECTORIES)
 get_target_property(_gz_ign_inc ignition-math6::ignition-math6 INTERFACE_INCLUDE_DIRECTORIES)
 list(APPEND GAZEBO_INCLUDE_DIRS ${car_INCLUDE_DIRS} ${_gz_sdf_inc} ${_gz_ign_inc} ${Boost_INCLUDE_DIRS})
+# Gazebo 11 exports ignition-common's headers too (gazebo_plugins include ignition/common/Profiler.hh; with the
+# profiler off, as Debian builds it, its IGN_PROFILE macros expand to nothing): car adds Debian's ignition-common 4
+# headers where libignition-common-core-dev is installed. It is not a dependency of car: without it, code that
+# includes them does not build (car/docs/PLUGINS.md).
+find_path(_gz_ign_common_inc ignition/common/Profiler.hh PATH_SUFFIXES ignition/common4)
+if(_gz_ign_common_inc)
+  list(APPEND GAZEBO_INCLUDE_DIRS ${_gz_ign_common_inc})
+endif()
 list(REMOVE_DUPLICATES GAZEBO_INCLUDE_DIRS)
 set(GAZEBO_LIBRARIES ${car_LIBRARIES} sdformat12::sdformat12 ignition-math6::ignition-math6)
 set(GAZEBO_LIBRARY_DIRS ${car_LIBRARY_DIRS})

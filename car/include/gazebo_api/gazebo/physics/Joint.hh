@@ -2,6 +2,7 @@
 // prismatic: one axis, index 0) of one of car's robots.
 #pragma once
 
+#include <boost/any.hpp>
 #include <boost/enable_shared_from_this.hpp>
 #include <boost/weak_ptr.hpp>
 #include <ignition/math/Vector3.hh>
@@ -45,6 +46,13 @@ class Joint : public boost::enable_shared_from_this<Joint> {
   double GetVelocityLimit(unsigned int _index);
   // The axis in the joint frame (a unit vector).
   ignition::math::Vector3d LocalAxis(const unsigned int _index) const;
+
+  // ODE's joint motor (Gazebo 11's ODEJoint::SetParam; docs/PLUGINS.md): "vel" [rad/s] or [m/s] and "fmax" [N m] or
+  // [N]: every step the joint is driven to "vel" with at most "fmax" (0: off), until changed; "friction" sets fmax to
+  // the value and vel to 0. _value must hold a double (else gzerr and false, as upstream). Other keys: gzerr, false.
+  bool SetParam(const std::string& _key, unsigned int _index, const boost::any& _value);
+  // "vel", "fmax" and "friction" (fmax) as set; 0 before any SetParam. Other keys: gzerr, 0.
+  double GetParam(const std::string& _key, unsigned int _index);
 
  private:
   boost::weak_ptr<Model> model;

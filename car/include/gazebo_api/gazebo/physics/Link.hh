@@ -59,6 +59,19 @@ class Link : public boost::enable_shared_from_this<Link> {
   // [N m] world axes / link axes.
   void AddTorque(const ignition::math::Vector3d& _torque);
   void AddRelativeTorque(const ignition::math::Vector3d& _torque);
+  // The sum of the forces [N] / torques [N m] (about the centre of gravity) added to the link in the current step,
+  // world frame: in WorldUpdateBegin and BeforePhysicsUpdate, what the callbacks before added (Gazebo's ODE clears
+  // them after the step; car keeps the step's sum until the next one starts).
+  ignition::math::Vector3d WorldForce() const;
+  ignition::math::Vector3d WorldTorque() const;
+
+  // The link frame relative to its model's frame.
+  ignition::math::Pose3d RelativePose() const;
+  // car: the link's world pose (Gazebo's pose being written by the physics; car writes none during a callback).
+  ignition::math::Pose3d DirtyPose() const;
+  // false: gravity no longer acts on the link (from the coming step on; kept over resets).
+  void SetGravityMode(bool _mode);
+  bool GetGravityMode() const;
 
  private:
   boost::weak_ptr<Model> model;

@@ -49,6 +49,9 @@ class Model : public boost::enable_shared_from_this<Model> {
   void SetLinearVel(const ignition::math::Vector3d& _vel);
   void SetAngularVel(const ignition::math::Vector3d& _vel);
   bool IsStatic() const;
+  // Moves the model rigidly so that the link lands on _pose (world frame); joints kept.
+  void SetLinkWorldPose(const ignition::math::Pose3d& _pose, std::string _linkName);
+  void SetLinkWorldPose(const ignition::math::Pose3d& _pose, const LinkPtr& _link);
 
   // car: the handles of its links, joints and controller, made once by the World handle; the controller's update,
   // called each step by car_gazebo.

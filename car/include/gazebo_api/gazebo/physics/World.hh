@@ -39,6 +39,8 @@ class World : public boost::enable_shared_from_this<World> {
   void SetGravity(const ignition::math::Vector3d& _gravity);
   PhysicsEnginePtr Physics() const;
   bool PhysicsEnabled() const;
+  // Off: a step advances sim time and raises the events; nothing moves.
+  void SetPhysicsEnabled(const bool _enable);
 
   // car: the core world, and whether a step's WorldUpdateBegin is running (SimTime counts the coming step).
   car_sim::World* Core() const { return world; }

@@ -1,6 +1,7 @@
 // car's Gazebo 11 API (docs/PLUGINS.md): the physics classes car offers.
 #pragma once
 
+#include "gazebo/gazebo_config.h"
 #include "gazebo/physics/Inertial.hh"
 #include "gazebo/physics/Joint.hh"
 #include "gazebo/physics/JointController.hh"

@@ -1,0 +1,27 @@
+// car's Gazebo 11 API (docs/PLUGINS.md): gazebo/transport/TransportTypes.hh, the transport layer's class names and
+// pointer types as Gazebo 11 declares them (boost::shared_ptr), and nothing more. gazebo_plugins' model plug-ins
+// include it and use none of it; car offers no transport classes, so code that uses one (makes a Node, publishes,
+// subscribes) fails to build on the incomplete type.
+#pragma once
+
+#include <boost/shared_ptr.hpp>
+
+namespace gazebo {
+namespace transport {
+
+class Connection;
+class Node;
+class Publication;
+class Publisher;
+class Subscriber;
+class SubscriptionTransport;
+
+typedef boost::shared_ptr<Connection> ConnectionPtr;
+typedef boost::shared_ptr<Node> NodePtr;
+typedef boost::shared_ptr<Publication> PublicationPtr;
+typedef boost::shared_ptr<Publisher> PublisherPtr;
+typedef boost::shared_ptr<Subscriber> SubscriberPtr;
+typedef boost::shared_ptr<SubscriptionTransport> SubscriptionTransportPtr;
+
+}  // namespace transport
+}  // namespace gazebo
