@@ -49,4 +49,12 @@ if(CATKIN_ENABLE_TESTING AND TARGET test_core)
   set_target_properties(car_gz_test_node_push PROPERTIES OUTPUT_NAME car_test_model_push PREFIX "lib"
     LIBRARY_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/lib)
   add_rostest(test/ros/gazebo_plugin.test DEPENDENCIES car_gz_test_node_push)
+  # the world plug-ins' rostest: the factory and events plug-ins in the devel space's lib/, as above
+  foreach(_p world_factory world_events)
+    add_library(car_gz_test_node_${_p} MODULE EXCLUDE_FROM_ALL test/gazebo/plugins/${_p}.cc)
+    target_link_libraries(car_gz_test_node_${_p} car_gazebo)
+    set_target_properties(car_gz_test_node_${_p} PROPERTIES OUTPUT_NAME car_test_${_p} PREFIX "lib"
+      LIBRARY_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/lib)
+  endforeach()
+  add_rostest(test/ros/gazebo_world_plugin.test DEPENDENCIES car_gz_test_node_world_factory car_gz_test_node_world_events)
 endif()
