@@ -75,6 +75,8 @@ struct WorldDescription {
   Eigen::Vector3d background = Eigen::Vector3d(0.7, 0.7, 0.7);                  // <scene><background>
   std::vector<WorldModelDesc> models;
   std::vector<WorldRobotDesc> robots;  // world models simulated as robots (plug-ins, sensors, joints)
+  // The world's own <plugin>s (directly in <world>), in document order: Gazebo's world plug-ins (docs/PLUGINS.md)
+  std::vector<PluginSpec> plugins;
   std::vector<Diagnostic> diagnostics;
 
   const WorldModelDesc* find_model(const std::string& name) const;

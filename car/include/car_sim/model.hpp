@@ -123,6 +123,7 @@ struct PluginSpec {
   std::string filename;
   ParamList params;
   int line = 0;  // line of <plugin> in the source document
+  std::string xml;  // the <plugin> element as written, for a world's own plug-ins ("" for a model's)
 };
 
 // A <sensor> element inside <gazebo reference="LINK">.

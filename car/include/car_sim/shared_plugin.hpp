@@ -14,14 +14,24 @@ namespace car_sim {
 
 class World;
 
+// Where a plug-in from a library sits, which says the class its RegisterPlugin must make (Gazebo's PluginType).
+enum class PluginPlace {
+  Model,   // a robot's <plugin>: a ModelPlugin, Load(model, sdf)
+  World,   // a <plugin> directly in <world>: a WorldPlugin, Load(world, sdf)
+  System,  // gzserver's -s FILE: a SystemPlugin, Load(argc, argv)
+};
+
 // What a plug-in from a library is loaded with.
 struct SharedPluginContext {
   World* world = nullptr;
-  std::string model;     // the robot it belongs to
+  PluginPlace place = PluginPlace::Model;
+  std::vector<std::string> args;  // a system plug-in's argv (the server's command line)
+  std::string model;     // the robot it belongs to (a model plug-in)
   std::string name;      // <plugin name>
   std::string filename;  // <plugin filename>, as written
   std::string path;      // the file loaded
   ParamList params;      // the <plugin>'s elements, flattened ("a/b" for <a><b>)
+  std::string xml;       // the <plugin> element as written, when known (a world's): its sdf keeps order and repeats
 };
 
 // A running plug-in, held by the skin; destroyed with its model (unload).
@@ -39,6 +49,15 @@ class SharedPluginHost {
   virtual ~SharedPluginHost() = default;
   virtual std::unique_ptr<SharedPlugin> load(void* register_fn, const SharedPluginContext& ctx) = 0;
 };
+
+// The world's own <plugin>s that none of car's kinds serves, in order: each found on the search path, dlopened, its
+// RegisterPlugin handed to the host with PluginPlace::World. What fails is a diagnostic, and the world goes on.
+std::vector<std::unique_ptr<SharedPlugin>> load_world_plugins(World& world, const std::vector<PluginSpec>& specs,
+                                                              std::vector<Diagnostic>* diagnostics);
+// A system plug-in (PluginPlace::System) by file name, the same way.
+std::unique_ptr<SharedPlugin> load_system_plugin(World& world, const std::string& filename,
+                                                 const std::vector<std::string>& args,
+                                                 std::vector<Diagnostic>* diagnostics);
 
 // The host: car_gazebo registers itself when it is loaded (as the dependency of a plug-in's library, or linked).
 void set_shared_plugin_host(SharedPluginHost* host);

@@ -122,6 +122,7 @@ class World {
   void set_model_state(const std::string& name, const ModelState& s);
   const RobotInfo& robot(const std::string& name) const;
   std::vector<std::string> robot_names() const;
+  size_t robot_count() const;  // robot_names().size(), without the copy
 
   // Every non-fixed joint of a robot, in URDF order.
   std::vector<JointState> joint_states(const std::string& robot) const;
@@ -227,8 +228,34 @@ class World {
   using StepHook = std::function<void(uint64_t tick)>;
   // Returns the hook's id (never 0).
   uint64_t add_step_hook(StepPhase phase, StepHook hook);
-  // Removes a hook; an unknown id is nothing.
+  // Removes a hook (a step, pause or stop hook); an unknown id is nothing.
   void remove_step_hook(uint64_t id);
+
+  // Whether the world is paused (Gazebo's World::IsPaused): a flag for the pacer, which steps only while it is false
+  // (the ROS node's pause_physics and unpause_physics set it); step() itself runs whatever it says. set_paused calls
+  // the pause hooks, with the new value, only when the flag changes (Gazebo's World::SetPaused and
+  // event::Events::pause).
+  bool paused() const;
+  void set_paused(bool paused);
+  uint64_t add_pause_hook(std::function<void(bool paused)> hook);
+  // The world stops: the stop hooks run once, at the first stop() or in the destructor, before any plug-in goes
+  // (Gazebo's World::Stop and event::Events::stop, at the server's end).
+  uint64_t add_stop_hook(std::function<void()> hook);
+  void stop();
+  // Work for between steps, in the order given (Gazebo's World::ProcessMessages: models inserted by a plug-in):
+  // step() runs it at the end of each step, after every plug-in's post_physics; run_deferred() runs it now (the
+  // pacer calls it while paused, as Gazebo processes its messages while paused). Work deferred by deferred work runs
+  // at the next call.
+  void defer(std::function<void()> work);
+  void run_deferred();
+
+  // The world's own <plugin>s (WorldDescription::plugins) that load from libraries, loaded when the World is made,
+  // after the world's models (docs/COMPAT-plugins.md "World and system plug-ins"); what loading them found (the
+  // messages of a plug-in not found or not loaded), for the skins to log.
+  const std::vector<Diagnostic>& world_diagnostics() const;
+  // A system plug-in (gzserver's -s FILE): looked for as a model's plug-in file, then loaded with Load(args) and
+  // Init(), held until the World goes. Returns what loading it found (empty: it runs).
+  std::vector<Diagnostic> load_system_plugin(const std::string& filename, const std::vector<std::string>& args);
 
   // A force [N] acting at `point` [m] and a torque [N m] on a robot's link for the coming step only (Gazebo's
   // Link::AddForce family). Frame::World: force and torque in world axes, point a world position; Frame::Link:

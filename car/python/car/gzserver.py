@@ -5,6 +5,7 @@ gazebo_ros's launch files run `gzserver [-u] [-r] [--verbose] -e ENGINE EXTRA_AR
 `gazebo`; the compat packages gazebo_ros and gazebo forward their `gzserver`, `gazebo`, `gzclient`, `debug` and
 `perf` executables here.
 """
+import json
 import os
 import signal
 import sys
@@ -17,7 +18,7 @@ USAGE = """usage: gzserver [options] [WORLD]   (car: Gazebo 11's server options,
   WORLD                  SDF world file, or a name under GAZEBO_RESOURCE_PATH (e.g. worlds/empty.world)
   -u, --pause            start paused
   -e, --physics ENGINE   ode, bullet, simbody or dart: accepted; car's own physics runs
-  -s, --server-plugin L  system plug-in: gazebo_ros's own accepted, others warned (car loads none)
+  -s, --server-plugin L  system plug-in: gazebo_ros's own accepted (car is them), others loaded from their library
   --seed N               random seed (integer)
   --iters N              stop after N steps
   --verbose              accepted (car always logs at INFO)
@@ -39,12 +40,13 @@ def _is_ros_arg(a):
 def parse(argv, program='gzserver'):
     """Parse a gzserver/gazebo command line.
 
-    Returns a dict: world (str or None), paused, seed, iters, engine, verbose, plugins (list), warnings (list of
+    Returns a dict: world (str or None), paused, seed, iters, engine, verbose, plugins (list), system_plugins (the
+    -s libraries car loads), argv (the command line without ROS remappings), warnings (list of
     log lines), notes (list), ros_args (remappings passed through), help, version. Raises UsageError naming the
     argument on anything gzserver would refuse.
     """
     opts = {'world': None, 'paused': False, 'seed': None, 'iters': None, 'engine': None, 'verbose': False,
-            'plugins': [], 'warnings': [], 'notes': [], 'ros_args': [], 'help': False, 'version': False}
+            'plugins': [], 'system_plugins': [], 'argv': [a for a in argv if not _is_ros_arg(a)], 'warnings': [], 'notes': [], 'ros_args': [], 'help': False, 'version': False}
     takes_value = {'-e', '--physics', '-s', '--server-plugin', '-g', '--gui-plugin', '--seed', '--iters',
                    '--record_path', '--record_period', '--record_encoding', '--record_filter', '-o', '--profile',
                    '-p', '--play'}
@@ -81,9 +83,13 @@ def parse(argv, program='gzserver'):
             if (a in ('-g', '--gui-plugin')) and program == 'gzserver':
                 raise UsageError('%s: gzserver takes no GUI plug-ins (gazebo and gzclient do)' % a)
             opts['plugins'].append(value)
-            if os.path.basename(value) not in ROS_SYSTEM_PLUGINS:
-                opts['warnings'].append('%s %s: not loaded: car runs no Gazebo system plug-ins (only the plug-ins '
-                                        'it simulates, from the models)' % (a, value))
+            if os.path.basename(value) in ROS_SYSTEM_PLUGINS:
+                pass
+            elif a in ('-g', '--gui-plugin'):
+                opts['warnings'].append('%s %s: not loaded: car is headless (no GUI plug-ins)' % (a, value))
+            else:
+                # a system plug-in from a library: car's node loads it (docs/COMPAT-plugins.md)
+                opts['system_plugins'].append(value)
         elif a in ('--seed', '--iters'):
             try:
                 n = int(value)
@@ -119,6 +125,10 @@ def node_argv(opts):
         out.append('_seed:=%d' % opts['seed'])
     if opts['iters'] is not None:
         out.append('_iters:=%d' % opts['iters'])
+    if opts['system_plugins']:
+        # YAML lists: the node's ~system_plugins and the command line they are loaded with (Load(argc, argv))
+        out.append('_system_plugins:=%s' % json.dumps(opts['system_plugins']))
+        out.append('_server_argv:=%s' % json.dumps(['gzserver'] + opts['argv']))
     return out
 
 

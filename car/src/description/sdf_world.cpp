@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 #include <sys/stat.h>
+#include <tinyxml2.h>
 
 #include "car_sim/description.hpp"
 #include "car_sim/mesh.hpp"
@@ -17,6 +18,8 @@
 #include "xml_util.hpp"
 
 namespace car_sim {
+
+void parse_gazebo_extensions(const tinyxml2::XMLElement* robot, RobotModel* model);  // model/gazebo_ext.cpp
 
 namespace {
 
@@ -142,6 +145,31 @@ void add_model(const sdf::Model& m, const std::string& prefix, const Eigen::Isom
   for (uint64_t i = 0; i < m.ModelCount(); ++i) add_model(*m.ModelByIndex(i), name, pose, is_static, d);
 }
 
+// The <plugin>s directly in <world> (Gazebo's World::LoadPlugins reads the same): through the URDF path's <gazebo>
+// reader, as a model's plug-ins (sdf_model.cpp rule 10), so each keeps its elements flattened as every kind's do.
+void read_world_plugins(const sdf::ElementPtr& we, const std::string& source, WorldDescription* d) {
+  if (!we || !we->HasElement("plugin")) return;
+  std::string xml = "<robot>";
+  std::vector<int> lines;
+  std::vector<std::string> texts;
+  for (sdf::ElementPtr p = we->GetElement("plugin"); p; p = p->GetNextElement("plugin")) {
+    texts.push_back(p->ToString(""));
+    xml += "<gazebo>" + texts.back() + "</gazebo>";
+    lines.push_back(line_of(p));
+  }
+  xml += "</robot>";
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
+    throw LoadError(source, 0, "world/plugin", std::string("cannot read the world's plug-ins: ") + doc.ErrorStr());
+  RobotModel m;
+  parse_gazebo_extensions(doc.RootElement(), &m);
+  for (size_t i = 0; i < m.plugins.size(); ++i) {
+    if (i < lines.size()) m.plugins[i].line = lines[i];
+    if (i < texts.size()) m.plugins[i].xml = texts[i];
+    d->plugins.push_back(m.plugins[i]);
+  }
+}
+
 WorldDescription convert(const sdf::Root& root, const std::string& source) {
   const sdf::World* w = root.WorldCount() > 0 ? root.WorldByIndex(0) : nullptr;
   if (!w) throw LoadError(source, 0, "sdf", "no <world> in the file");
@@ -169,6 +197,7 @@ WorldDescription convert(const sdf::Root& root, const std::string& source) {
     break;
   }
   for (uint64_t i = 0; i < w->ModelCount(); ++i) add_model(*w->ModelByIndex(i), "", Eigen::Isometry3d::Identity(), false, &d);
+  read_world_plugins(w->Element(), source, &d);
   apply_state(*w, &d);
   detail::validate_world(&d);  // validate.cpp: step size, gravity, poses, masses, shape sizes
   for (const auto& m : d.models) {

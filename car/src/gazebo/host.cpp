@@ -2,6 +2,7 @@
 // and raises Gazebo's update events from two step hooks on car's world, in Gazebo 11's order: WorldUpdateBegin
 // (sim time counting the coming step), the models' joint controllers, BeforePhysicsUpdate (physics enabled), the
 // physics step, WorldUpdateEnd. docs/PLUGINS.md.
+#include <functional>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -37,12 +38,28 @@ Hub::Hub(car_sim::World* c) : core(c), world(new gazebo::physics::World(c)) {
   info_.worldName = core->description().name;
   before_hook_ = core->add_step_hook(car_sim::World::StepPhase::BeforePhysics, [this](uint64_t t) { before_physics(t); });
   after_hook_ = core->add_step_hook(car_sim::World::StepPhase::AfterPhysics, [this](uint64_t t) { after_physics(t); });
+  pause_hook_ = core->add_pause_hook([this](bool p) {
+    CurrentHub in(this);
+    pause.fire(p);
+  });
+  stop_hook_ = core->add_stop_hook([this] {
+    CurrentHub in(this);
+    stop.fire();
+  });
 }
 
 Hub::~Hub() {
-  core->remove_step_hook(before_hook_);
-  core->remove_step_hook(after_hook_);
+  for (uint64_t id : {before_hook_, after_hook_, pause_hook_, stop_hook_}) core->remove_step_hook(id);
   hubs().erase(core);
+}
+
+Hub* Hub::named(const std::string& name) {
+  Hub* cur = current();
+  if (name.empty() || (cur && cur->world->Name() == name)) return cur;
+  for (auto& [core, weak] : hubs())
+    if (auto h = weak.lock())
+      if (h->world->Name() == name) return h.get();
+  return nullptr;
 }
 
 std::shared_ptr<Hub> Hub::of(car_sim::World* core) {
@@ -70,20 +87,30 @@ void Hub::before_physics(uint64_t tick) {
   info_.simTime = time_of(tick + 1, core->dt());
   info_.realTime = info_.simTime;
   world->SetInStep(true);
+  in_step = true;
   try {
     begin.fire(info_);
     world->UpdateControllers();
     if (core->physics_enabled()) before.fire(info_);
   } catch (...) {
     world->SetInStep(false);
+    in_step = false;
     throw;
   }
   world->SetInStep(false);
+  in_step = false;
 }
 
 void Hub::after_physics(uint64_t) {
   CurrentHub in(this);
-  end.fire();
+  in_step = true;
+  try {
+    end.fire();
+  } catch (...) {
+    in_step = false;
+    throw;
+  }
+  in_step = false;
 }
 
 namespace {
@@ -91,6 +118,16 @@ namespace {
 // The <plugin> element with its children as written (flattened keys "a/b" back to nested elements), each a string
 // value as sdformat keeps a plug-in's elements: Get<double>, Get<ignition::math::Vector3d>, ... parse it.
 sdf::ElementPtr plugin_sdf(const car_sim::SharedPluginContext& ctx) {
+  // the element as written, when the loader kept it (a world's plug-ins): sdformat copies a <plugin>'s children in
+  // order, repeats and attributes included, each value a string, as Gazebo's World::LoadPlugin receives them
+  if (!ctx.xml.empty()) {
+    sdf::SDFPtr doc(new sdf::SDF());
+    sdf::init(doc);
+    if (sdf::readString("<sdf version='1.6'><world name='w'>" + ctx.xml + "</world></sdf>", doc)) {
+      sdf::ElementPtr w = doc->Root()->GetElement("world");
+      if (w->HasElement("plugin")) return w->GetElement("plugin");
+    }
+  }
   auto e = std::make_shared<sdf::Element>();
   e->SetName("plugin");
   e->AddAttribute("name", "string", "", true);
@@ -119,7 +156,7 @@ sdf::ElementPtr plugin_sdf(const car_sim::SharedPluginContext& ctx) {
   return e;
 }
 
-// A model plug-in with what keeps its world's events going while it lives.
+// A plug-in (model, world or system) with what keeps its world's events going while it lives.
 class Running : public car_sim::SharedPlugin {
  public:
   ~Running() override {
@@ -128,12 +165,49 @@ class Running : public car_sim::SharedPlugin {
   }
   void reset() override {
     CurrentHub in(hub.get());
-    plugin->Reset();
+    if (do_reset) do_reset();
   }
   std::shared_ptr<Hub> hub;
   gazebo::physics::ModelPtr model;
-  std::unique_ptr<gazebo::ModelPlugin> plugin;
+  std::unique_ptr<gazebo::PluginBase> plugin;
+  std::function<void()> do_reset;
+  // a system plug-in's argv: it may keep the pointers, as gzserver's live as long as the process
+  std::vector<std::string> args;
+  std::vector<char*> argv;
 };
+
+// What a library's RegisterPlugin made, in the words of its registration macro.
+std::string kind_of(gazebo::PluginBase* p) {
+  if (dynamic_cast<gazebo::ModelPlugin*>(p)) return "a model plug-in (GZ_REGISTER_MODEL_PLUGIN)";
+  if (dynamic_cast<gazebo::WorldPlugin*>(p)) return "a world plug-in (GZ_REGISTER_WORLD_PLUGIN)";
+  if (dynamic_cast<gazebo::SystemPlugin*>(p)) return "a system plug-in (GZ_REGISTER_SYSTEM_PLUGIN)";
+  return "a plug-in of a type car does not load here";
+}
+
+// Gazebo's message for a plug-in of the wrong type (Model::LoadPlugin, World::LoadPlugin, gazebo::addPlugin), and
+// what it is and what the place takes.
+std::runtime_error wrong_type(const std::string& who, const car_sim::SharedPluginContext& ctx, gazebo::PluginBase* p,
+                              const std::string& takes) {
+  return std::runtime_error(who + " is attempting to load a plugin, but detected an incorrect plugin type. Plugin filename[" +
+                            ctx.filename + "] name[" + ctx.name + "]: it is " + kind_of(p) + "; " + takes);
+}
+
+// Load and Init, an exception out of them a runtime_error saying so.
+template <class Fn>
+void guarded(Fn&& fn) {
+  try {
+    fn();
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string("Load threw: ") + e.what());
+  } catch (const gazebo::common::Exception& e) {
+    // gzthrow's text ends in a newline
+    std::string what = e.GetErrorStr();
+    while (!what.empty() && what.back() == '\n') what.pop_back();
+    throw std::runtime_error("Load threw: " + what);
+  } catch (...) {
+    throw std::runtime_error("Load threw an exception that is not a std::exception");
+  }
+}
 
 class Host : public car_sim::SharedPluginHost {
  public:
@@ -141,26 +215,52 @@ class Host : public car_sim::SharedPluginHost {
     auto run = std::make_unique<Running>();
     run->hub = Hub::of(ctx.world);
     CurrentHub in(run->hub.get());
-    using Factory = gazebo::ModelPlugin* (*)();
+    // every plug-in class derives PluginBase first, so the factory's pointer is one to its PluginBase
+    using Factory = gazebo::PluginBase* (*)();
     run->plugin.reset(reinterpret_cast<Factory>(register_fn)());
     if (!run->plugin) throw std::runtime_error("RegisterPlugin returned no plug-in");
-    if (run->plugin->GetType() != gazebo::MODEL_PLUGIN)
-      throw std::runtime_error("it is not a model plug-in (type " + std::to_string(run->plugin->GetType()) + ")");
     run->plugin->filename = ctx.filename;
     run->plugin->handleName = ctx.name;
-    run->model = run->hub->world->ModelByName(ctx.model);
-    try {
-      run->plugin->Load(run->model, plugin_sdf(ctx));
-      run->plugin->Init();
-    } catch (const std::exception& e) {
-      throw std::runtime_error(std::string("Load threw: ") + e.what());
-    } catch (const gazebo::common::Exception& e) {
-      // gzthrow's text ends in a newline
-      std::string what = e.GetErrorStr();
-      while (!what.empty() && what.back() == '\n') what.pop_back();
-      throw std::runtime_error("Load threw: " + what);
-    } catch (...) {
-      throw std::runtime_error("Load threw an exception that is not a std::exception");
+    switch (ctx.place) {
+      case car_sim::PluginPlace::Model: {
+        auto* p = dynamic_cast<gazebo::ModelPlugin*>(run->plugin.get());
+        if (!p)
+          throw wrong_type("Model[" + ctx.model + "]", ctx, run->plugin.get(),
+                           "a model's <plugin> takes a model plug-in (GZ_REGISTER_MODEL_PLUGIN)");
+        run->model = run->hub->world->ModelByName(ctx.model);
+        guarded([&] {
+          p->Load(run->model, plugin_sdf(ctx));
+          p->Init();
+        });
+        run->do_reset = [p] { p->Reset(); };
+        break;
+      }
+      case car_sim::PluginPlace::World: {
+        auto* p = dynamic_cast<gazebo::WorldPlugin*>(run->plugin.get());
+        if (!p)
+          throw wrong_type("World[" + run->hub->world->Name() + "]", ctx, run->plugin.get(),
+                           "a <plugin> in <world> takes a world plug-in (GZ_REGISTER_WORLD_PLUGIN)");
+        guarded([&] {
+          p->Load(run->hub->world, plugin_sdf(ctx));
+          p->Init();
+        });
+        run->do_reset = [p] { p->Reset(); };
+        break;
+      }
+      case car_sim::PluginPlace::System: {
+        auto* p = dynamic_cast<gazebo::SystemPlugin*>(run->plugin.get());
+        if (!p)
+          throw wrong_type("System", ctx, run->plugin.get(),
+                           "gzserver's -s takes a system plug-in (GZ_REGISTER_SYSTEM_PLUGIN)");
+        run->args = ctx.args;
+        for (auto& a : run->args) run->argv.push_back(a.data());
+        run->argv.push_back(nullptr);
+        guarded([&] {
+          p->Load(static_cast<int>(run->args.size()), run->argv.data());
+          p->Init();
+        });
+        break;
+      }
     }
     return run;
   }
@@ -213,6 +313,14 @@ ConnectionPtr Events::ConnectBeforePhysicsUpdate(std::function<void(const common
 
 ConnectionPtr Events::ConnectWorldUpdateEnd(std::function<void()> _subscriber) {
   return connect(hub_for("ConnectWorldUpdateEnd"), &car_gazebo::Hub::end, std::move(_subscriber));
+}
+
+ConnectionPtr Events::ConnectPause(std::function<void(bool)> _subscriber) {
+  return connect(hub_for("ConnectPause"), &car_gazebo::Hub::pause, std::move(_subscriber));
+}
+
+ConnectionPtr Events::ConnectStop(std::function<void()> _subscriber) {
+  return connect(hub_for("ConnectStop"), &car_gazebo::Hub::stop, std::move(_subscriber));
 }
 
 }  // namespace event

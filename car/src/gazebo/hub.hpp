@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "car_sim/world.hpp"
@@ -79,13 +81,28 @@ class Hub : public std::enable_shared_from_this<Hub> {
   car_sim::World* core;
   gazebo::physics::WorldPtr world;
   SlotList<const gazebo::common::UpdateInfo&> begin, before;
-  SlotList<> end;
+  SlotList<> end, stop;
+  SlotList<bool> pause;
+  // whether an update event is running (work that must not run inside a step is deferred)
+  bool in_step = false;
+
+  // Gazebo's factory: a model's SDF text (or a file, by its URI) inserted at the end of the next step, named
+  // `name` when given (else the document's), at `pose` when given (else the document's). Errors are gzerr lines, as
+  // Gazebo's World::ProcessFactoryMsgs prints them.
+  struct Insert {
+    std::string sdf, file;
+    std::optional<ignition::math::Pose3d> pose;
+    bool allow_renaming = true;
+  };
+  void insert(Insert what);
+  // The hub of the world named `name` ("" or the current one's name: the current one); null when none.
+  static Hub* named(const std::string& name);
 
  private:
   void before_physics(uint64_t tick);
   void after_physics(uint64_t tick);
   gazebo::common::UpdateInfo info_;
-  uint64_t before_hook_ = 0, after_hook_ = 0;
+  uint64_t before_hook_ = 0, after_hook_ = 0, pause_hook_ = 0, stop_hook_ = 0;
 };
 
 // Makes a hub current for the plug-in code run in its scope.

@@ -6,6 +6,7 @@
 #include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/JointState.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <thread>
@@ -24,7 +25,8 @@ bool SimNode::init() {
   std::string world_file;
   pnh_.param<std::string>("world_name", world_file, "");
   const bool rtf_finite = finite_param(pnh_, "rtf", 1.0, rtf_);
-  pnh_.param("paused", paused_, false);
+  bool start_paused = false;
+  pnh_.param("paused", start_paused, false);
   pnh_.param("clock_rate", clock_rate_, 100.0);
   pnh_.param("joint_state_rate", joint_state_rate_, 50.0);
   pnh_.param("model_states_rate", model_states_rate_, 100.0);
@@ -62,11 +64,16 @@ bool SimNode::init() {
     ROS_FATAL("car: cannot load the world: %s", e.what());
     return false;
   }
+  // the pause flag lives in the world, where Gazebo plug-ins read and set it (World::IsPaused, SetPaused)
+  world_->set_paused(start_paused);
   nh_.setParam("/use_sim_time", true);
   set_periods();
   log_world(world_file);
   // world models with plug-ins or sensors are robots from the start: their topics (docs/COMPAT-sdf.md 16)
   for (const auto& name : world_->robot_names()) make_io(name);
+  known_robots_ = world_->robot_count();
+  // gzserver's -s plug-ins, once the world is there (Gazebo loads them before it: docs/COMPAT-plugins.md)
+  load_system_plugins();
   // after the world robots' plug-ins subscribed: the answers' callbacks come after theirs
   watch_published_ = lockstep_.configure(nh_, pnh_);
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
@@ -93,8 +100,10 @@ void SimNode::run() {
       publisher_.flush();
       ros::spinOnce();
     }
-    if (paused_) {
+    if (world_->paused()) {
       repace_ = true;
+      // models a plug-in inserted come in while paused too, as Gazebo's World::Step processes its messages
+      run_deferred();
       // time paused does not count against the lockstep guard
       if (watch_published_) lockstep_.resume(clock::now());
       // keep /clock alive while paused, at 10 Hz of wall time
@@ -134,9 +143,11 @@ void SimNode::run() {
     } catch (const car_sim::SimulationError& e) {
       // a body blew up: stop rather than publish NaN (the guard in the core names the body)
       ROS_ERROR("car: %s; physics paused (call reset_simulation or delete_model, then unpause_physics)", e.what());
-      paused_ = true;
+      world_->set_paused(true);
       continue;
     }
+    // models a Gazebo plug-in inserted in the step get their topics
+    if (world_->robot_count() != known_robots_) take_new_robots();
     // the steps' messages wake the publishing thread at most once a millisecond of wall time, and before any
     // sleep (docs/COMPAT-dropins.md "Publishing thread")
     publisher_.hold();
@@ -152,7 +163,7 @@ void SimNode::run() {
     if (pause_at_tick_ > 0 && world_->tick() >= pause_at_tick_) {
       // ~pause_at reached: paused after exactly this step, and its time sent at once
       pause_at_tick_ = 0;
-      paused_ = true;
+      world_->set_paused(true);
       publish_clock();
       publisher_.flush();
       continue;
@@ -198,12 +209,19 @@ void SimNode::log_world(const std::string& file) {
     ROS_INFO("car:   model %-16s %s at (%.3f %.3f %.3f)", m.name.c_str(), m.is_static ? "static " : "dynamic",
              m.pose.translation().x(), m.pose.translation().y(), m.pose.translation().z());
   for (const auto& diag : d.diagnostics) ROS_WARN("car: %s: %s", diag.element.c_str(), diag.message.c_str());
+  // the world's own plug-ins: what loaded, and what did not (docs/COMPAT-plugins.md "World and system plug-ins")
+  log_world_plugins(0);
+  for (const auto& p : d.plugins)
+    if (std::none_of(world_->world_diagnostics().begin(), world_->world_diagnostics().end(),
+                     [&](const car_sim::Diagnostic& x) { return x.element == "world/plugin[" + p.name + "]"; }))
+      ROS_INFO("car: world plug-in '%s' (%s) runs from its library through car's Gazebo API", p.name.c_str(),
+               p.filename.c_str());
   // the world's robots' own warnings (a shape left out, a visual mesh missing, ...)
   for (const auto& r : world_->robot_names())
     for (const auto& diag : world_->robot(r).model.diagnostics)
       if (diag.severity == car_sim::Severity::Warning)
         ROS_WARN("car: %s: %s: %s", r.c_str(), diag.element.c_str(), diag.message.c_str());
-  ROS_INFO("car: %s, real-time factor %s, solver %d iterations", paused_ ? "paused" : "running",
+  ROS_INFO("car: %s, real-time factor %s, solver %d iterations", world_->paused() ? "paused" : "running",
            rtf_ > 0 ? std::to_string(rtf_).c_str() : "0 (as fast as possible)", solver_iterations_);
 }
 
@@ -350,6 +368,61 @@ void SimNode::ports_changed(const std::string& robot, const std::string& plugin)
   }
   update_activity();
   lockstep_.resubscribe();
+}
+
+}  // namespace car_ros
+
+namespace car_ros {
+
+bool SimNode::run_deferred() {
+  world_->run_deferred();
+  if (world_->robot_count() == known_robots_) return false;
+  take_new_robots();
+  return true;
+}
+
+void SimNode::take_new_robots() {
+  known_robots_ = world_->robot_count();
+  for (const auto& name : world_->robot_names()) {
+    if (io_.count(name)) continue;
+    // a model a Gazebo plug-in inserted (World::InsertModel*, ~/factory): its plug-ins' messages and its topics
+    const auto& info = world_->robot(name);
+    for (const auto& d : info.config.diagnostics)
+      if (d.severity != car_sim::Severity::Info)
+        ROS_WARN("car: %s: %s: %s", name.c_str(), d.element.c_str(), d.message.c_str());
+    make_io(name);
+    const Eigen::Vector3d p = info.spawn_pose.translation();
+    ROS_INFO("car: inserted '%s' by a plug-in (%zu links, %zu joints, %zu plug-ins) at (%.3f %.3f %.3f)", name.c_str(),
+             info.model.links.size(), info.model.joints.size(), info.config.plugins.size(), p.x(), p.y(), p.z());
+  }
+}
+
+void SimNode::log_world_plugins(size_t from) {
+  const auto& diags = world_->world_diagnostics();
+  for (size_t k = from; k < diags.size(); ++k) {
+    const auto& d = diags[k];
+    if (d.severity == car_sim::Severity::Error)
+      ROS_ERROR("car: %s: %s", d.element.c_str(), d.message.c_str());
+    else if (d.severity == car_sim::Severity::Warning)
+      ROS_WARN("car: %s: %s", d.element.c_str(), d.message.c_str());
+    else
+      ROS_INFO("car: %s: %s", d.element.c_str(), d.message.c_str());
+  }
+}
+
+// gzserver's -s FILE (docs/COMPAT-plugins.md "World and system plug-ins"): ~system_plugins (file names) and
+// ~server_argv (the command line they are loaded with), both lists, set by car's gzserver.
+void SimNode::load_system_plugins() {
+  std::vector<std::string> files, argv;
+  pnh_.getParam("system_plugins", files);
+  pnh_.getParam("server_argv", argv);
+  if (argv.empty()) argv.push_back("gzserver");
+  for (const auto& f : files) {
+    const size_t before = world_->world_diagnostics().size();
+    const auto found = world_->load_system_plugin(f, argv);
+    log_world_plugins(before);
+    if (found.empty()) ROS_INFO("car: system plug-in %s runs from its library through car's Gazebo API", f.c_str());
+  }
 }
 
 }  // namespace car_ros

@@ -92,6 +92,12 @@ class SimNode : public NodeContext {
   };
 
   void log_world(const std::string& file);
+  // Gazebo plug-ins of the world: the world's <plugin>s' messages from `from` on, gzserver's -s plug-ins, the work
+  // they deferred (inserted models: true when robots came), the topics of robots a plug-in inserted.
+  void log_world_plugins(size_t from);
+  void load_system_plugins();
+  bool run_deferred();
+  void take_new_robots();
   void publish_clock();
   void publish_outputs();
   // Switches the lazy plug-ins on or off, and hands each the output parts someone takes: at a robot's spawn, when a
@@ -144,7 +150,7 @@ class SimNode : public NodeContext {
   double rtf_ = 1.0, clock_rate_ = 100.0, joint_state_rate_ = 50.0, model_states_rate_ = 100.0;
   int solver_iterations_ = 10;
   uint64_t clock_period_ = 10, joint_state_period_ = 20, model_states_period_ = 10;  // [steps]
-  bool paused_ = false;
+  size_t known_robots_ = 0;  // robots with topics (make_io); more after a plug-in inserted a model
   ros::Publisher clock_pub_, model_states_pub_, link_states_pub_;
   ros::Subscriber set_model_state_sub_, set_link_state_sub_;  // the /gazebo/set_*_state topics
   // the pacing restarts from now: at the start, after a pause, a reset (time back to 0) or a new real-time factor

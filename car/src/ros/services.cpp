@@ -256,7 +256,7 @@ bool SimNode::reset_world(std_srvs::Empty::Request&, std_srvs::Empty::Response&)
 }
 
 bool SimNode::pause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
-  paused_ = true;
+  world_->set_paused(true);
   pause_at_tick_ = 0;
   return true;
 }
@@ -275,7 +275,7 @@ bool SimNode::unpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
       ROS_WARN("car: ~pause_at %g is not after the sim time %.3f s: ignored", at, now);
     }
   }
-  paused_ = false;
+  world_->set_paused(false);
   return true;
 }
 
@@ -497,7 +497,7 @@ bool SimNode::clear_efforts(gazebo_msgs::JointRequest::Request& req, gazebo_msgs
 bool SimNode::get_physics(gazebo_msgs::GetPhysicsProperties::Request&,
                           gazebo_msgs::GetPhysicsProperties::Response& res) {
   res.time_step = world_->dt();
-  res.pause = paused_;
+  res.pause = world_->paused();
   // Gazebo's real_time_update_rate [Hz]: rtf = rate * step; 0 = as fast as possible
   res.max_update_rate = rtf_ / world_->dt();
   const Eigen::Vector3d g = world_->gravity();

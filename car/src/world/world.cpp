@@ -13,6 +13,7 @@
 #include "bodies.hpp"
 #include "car_sim/mesh.hpp"
 #include "car_sim/parallel.hpp"
+#include "car_sim/shared_plugin.hpp"
 #include "guard.hpp"
 #include "physics.hpp"
 #include "services.hpp"
@@ -290,6 +291,14 @@ struct World::Impl : WorldAccess {
     hooks_dirty = false;
   }
   bool physics_on = true;  // Gazebo's PhysicsEnabled: off, a step advances time only (RobotHandle::set_physics_enabled)
+  // Gazebo's pause flag and its pause and stop hooks (same ids as the step hooks), work deferred to between steps,
+  // and the plug-ins that belong to the world rather than a robot: the world's <plugin>s and system plug-ins.
+  bool paused = false, stopped = false;
+  std::vector<std::pair<uint64_t, std::function<void(bool)>>> pause_hooks;
+  std::vector<std::pair<uint64_t, std::function<void()>>> stop_hooks;
+  std::vector<std::function<void()>> deferred;
+  std::vector<std::unique_ptr<SharedPlugin>> world_plugins, system_plugins;
+  std::vector<Diagnostic> world_diagnostics;
 };
 
 // ---- World ----------------------------------------------------------------------------------------------------
@@ -299,10 +308,16 @@ World::World(WorldDescription desc, WorldOptions options) : desc_(std::move(desc
   impl_->phys = std::make_unique<physics::Physics>(desc_, impl_->physics_options(), removed_);
   // world models with plug-ins, sensors or joints are robots from the start (docs/COMPAT-sdf.md 16)
   for (const auto& r : desc_.robots) spawn_sdf(r.robot, r.name, r.pose);
+  // then the world's own plug-ins, with the models there (Gazebo's World::LoadPlugins; docs/COMPAT-plugins.md)
+  impl_->world_plugins = load_world_plugins(*this, desc_.plugins, &impl_->world_diagnostics);
 }
 
 World::~World() {
-  // plug-ins first: one from a shared library removes its hooks as it unloads
+  stop();
+  // plug-ins first, the world's before the robots' (Gazebo's World::Fini): one from a shared library removes its
+  // hooks as it unloads
+  impl_->system_plugins.clear();
+  impl_->world_plugins.clear();
   impl_->robots.clear();
 }
 
@@ -421,7 +436,10 @@ void World::step(uint64_t n) {
         stamp(*r, i, before);
       }
     }
-    if (later.empty()) continue;
+    if (later.empty()) {
+      if (!impl_->deferred.empty()) run_deferred();
+      continue;
+    }
     // the concurrent ones on the threads (one alone on this thread); the ray scene brought up to date first, so
     // that they only read it
     impl_->rays();
@@ -429,15 +447,22 @@ void World::step(uint64_t n) {
       later[k].instance->plugin->post_physics(ctx, *later[k].robot, &later[k].instance->queue);
     });
     for (const auto& d : later) stamp(*d.robot, *d.instance, d.before);
+    if (!impl_->deferred.empty()) run_deferred();
   }
 }
 
 void World::reset() {
+  // paused for the reset, then as it was (Gazebo's World::Reset: a running world's pause hooks see true, then false)
+  const bool was_paused = impl_->paused;
+  set_paused(true);
   // time first: the plug-ins' schedules restart from it; wrench and effort jobs end
   tick_ = 0;
   impl_->wrenches.clear();
   impl_->efforts.clear();
   impl_->rebuild(removed_, tick_, true);
+  // the world's plug-ins after the models' (Gazebo's World::Reset); reset_poses leaves them, as reset_world does
+  for (auto& p : impl_->world_plugins) p->reset();
+  set_paused(was_paused);
 }
 
 void World::reset_poses() { impl_->rebuild(removed_, tick_, false); }
@@ -962,6 +987,8 @@ void World::set_solver_iterations(int n) {
 
 bool World::physics_enabled() const { return impl_->physics_on; }
 
+size_t World::robot_count() const { return impl_->robots.size(); }
+
 uint64_t World::add_step_hook(StepPhase phase, StepHook hook) {
   if (!hook) throw std::invalid_argument("a step hook needs a function");
   const uint64_t id = impl_->next_hook++;
@@ -976,6 +1003,61 @@ void World::remove_step_hook(uint64_t id) {
       impl_->hooks_dirty = true;
     }
   if (!impl_->running_hooks) impl_->drop_removed_hooks();
+  auto& ph = impl_->pause_hooks;
+  ph.erase(std::remove_if(ph.begin(), ph.end(), [id](const auto& h) { return h.first == id; }), ph.end());
+  auto& sh = impl_->stop_hooks;
+  sh.erase(std::remove_if(sh.begin(), sh.end(), [id](const auto& h) { return h.first == id; }), sh.end());
+}
+
+bool World::paused() const { return impl_->paused; }
+
+void World::set_paused(bool paused) {
+  if (impl_->paused == paused) return;
+  impl_->paused = paused;
+  // a copy: a hook may add or remove hooks
+  const auto hooks = impl_->pause_hooks;
+  for (const auto& h : hooks) h.second(paused);
+}
+
+uint64_t World::add_pause_hook(std::function<void(bool)> hook) {
+  if (!hook) throw std::invalid_argument("a pause hook needs a function");
+  const uint64_t id = impl_->next_hook++;
+  impl_->pause_hooks.emplace_back(id, std::move(hook));
+  return id;
+}
+
+uint64_t World::add_stop_hook(std::function<void()> hook) {
+  if (!hook) throw std::invalid_argument("a stop hook needs a function");
+  const uint64_t id = impl_->next_hook++;
+  impl_->stop_hooks.emplace_back(id, std::move(hook));
+  return id;
+}
+
+void World::stop() {
+  if (impl_->stopped) return;
+  impl_->stopped = true;
+  const auto hooks = impl_->stop_hooks;
+  for (const auto& h : hooks) h.second();
+}
+
+void World::defer(std::function<void()> work) {
+  if (!work) throw std::invalid_argument("deferred work needs a function");
+  impl_->deferred.push_back(std::move(work));
+}
+
+void World::run_deferred() {
+  std::vector<std::function<void()>> now;
+  now.swap(impl_->deferred);
+  for (auto& w : now) w();
+}
+
+const std::vector<Diagnostic>& World::world_diagnostics() const { return impl_->world_diagnostics; }
+
+std::vector<Diagnostic> World::load_system_plugin(const std::string& filename, const std::vector<std::string>& args) {
+  std::vector<Diagnostic> found;
+  if (auto p = car_sim::load_system_plugin(*this, filename, args, &found)) impl_->system_plugins.push_back(std::move(p));
+  impl_->world_diagnostics.insert(impl_->world_diagnostics.end(), found.begin(), found.end());
+  return found;
 }
 
 namespace {

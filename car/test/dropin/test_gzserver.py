@@ -39,9 +39,19 @@ def test_gazebo_ros_system_plugins_accepted_silently_from_any_folder():
     assert o['warnings'] == [] and len(o['plugins']) == 2
 
 
-def test_other_system_plugin_warned_by_name():
-    o = parse(['-s', 'libmy_world_plugin.so'])
-    assert len(o['warnings']) == 1 and 'libmy_world_plugin.so' in o['warnings'][0]
+def test_other_system_plugin_goes_to_the_node_with_the_command_line():
+    # -s of a library car does not serve: no warning; the node gets the file and gzserver's argv (YAML lists)
+    o = parse(['-u', '-s', 'libmy_system_plugin.so', '__name:=gazebo', 'w.world'])
+    assert o['warnings'] == [] and o['system_plugins'] == ['libmy_system_plugin.so']
+    assert node_argv(o) == ['__name:=gazebo', '_world_name:=w.world', '_paused:=true',
+                            '_system_plugins:=["libmy_system_plugin.so"]',
+                            '_server_argv:=["gzserver", "-u", "-s", "libmy_system_plugin.so", "w.world"]']
+
+
+def test_gui_plugin_warned_by_name_in_gazebo():
+    o = parse(['-g', 'libmy_gui.so'], program='gazebo')
+    assert o['warnings'] == ['-g libmy_gui.so: not loaded: car is headless (no GUI plug-ins)']
+    assert o['system_plugins'] == []
 
 
 def test_gui_plugin_refused_by_gzserver_accepted_by_gazebo():
@@ -84,7 +94,9 @@ def test_main_execs_sim_node_with_the_translated_arguments(monkeypatch, capsys):
     monkeypatch.setattr(gzserver, '_sim_node', lambda: '/x/sim_node')
     monkeypatch.setattr(os, 'execv', lambda exe, args: calls.append((exe, args)))
     gzserver.main(['-e', 'bullet', '-s', 'libfoo.so', 'w.world', '__name:=gazebo'])
-    assert calls == [('/x/sim_node', ['/x/sim_node', '__name:=gazebo', '_world_name:=w.world'])]
+    assert calls == [('/x/sim_node', ['/x/sim_node', '__name:=gazebo', '_world_name:=w.world',
+                                      '_system_plugins:=["libfoo.so"]',
+                                      '_server_argv:=["gzserver", "-e", "bullet", "-s", "libfoo.so", "w.world"]'])]
     out = capsys.readouterr()
     assert out.out.count('physics engine "bullet"') == 1
-    assert 'libfoo.so: not loaded' in out.err
+    assert out.err == ''

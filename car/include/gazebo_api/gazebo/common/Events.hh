@@ -1,8 +1,8 @@
 // car's Gazebo 11 API (docs/PLUGINS.md): the world's update events, in Gazebo's order within a step:
 // WorldUpdateBegin (sim time already counts the coming step), the models' joint controllers, BeforePhysicsUpdate
-// (only while physics is enabled), the physics step, WorldUpdateEnd. A callback connected during a plug-in's
-// Load, Init, Reset or an event belongs to that plug-in's world. Events car does not raise (pause, stop, render,
-// sensors) are not declared: code that connects to them does not build.
+// (only while physics is enabled), the physics step, WorldUpdateEnd; and pause and stop. A callback connected during
+// a plug-in's Load, Init, Reset or an event belongs to that plug-in's world. Events car does not raise (render,
+// sensors, world created, ...) are not declared: code that connects to them does not build.
 #pragma once
 
 #include <functional>
@@ -18,6 +18,10 @@ class Events {
   static ConnectionPtr ConnectWorldUpdateBegin(std::function<void(const common::UpdateInfo&)> _subscriber);
   static ConnectionPtr ConnectBeforePhysicsUpdate(std::function<void(const common::UpdateInfo&)> _subscriber);
   static ConnectionPtr ConnectWorldUpdateEnd(std::function<void()> _subscriber);
+  // The world's pause flag changed (World::SetPaused, /gazebo/pause_physics and unpause_physics), with its new value.
+  static ConnectionPtr ConnectPause(std::function<void(bool)> _subscriber);
+  // The world stops: once, when car's world ends (the node shuts down), before any plug-in is deleted.
+  static ConnectionPtr ConnectStop(std::function<void()> _subscriber);
 };
 
 }  // namespace event

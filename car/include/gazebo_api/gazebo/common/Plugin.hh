@@ -1,8 +1,10 @@
-// car's Gazebo 11 API (docs/PLUGINS.md): the plug-in base classes and their registration macros. A library that
-// registers a model plug-in is loaded by car's plug-in table (src/plugins/shared_library/) and run by car_gazebo:
-// Load(model, sdf), Init(), the update events each step, Reset() on reset_world and reset_simulation, deleted with
-// its model. World, sensor, system, visual and GUI plug-ins are not offered yet: their classes and macros are not
-// declared, so such a plug-in does not build against car.
+// car's Gazebo 11 API (docs/PLUGINS.md): the plug-in base classes and their registration macros, as
+// gazebo/common/Plugin.hh declares them. car's plug-in table (src/plugins/shared_library/) loads a library and
+// car_gazebo runs what its RegisterPlugin makes: a ModelPlugin for a model's <plugin> (Load(model, sdf)), a
+// WorldPlugin for a <plugin> in <world> (Load(world, sdf)), a SystemPlugin for gzserver's -s (Load(argc, argv));
+// then Init(), the update events each step, Reset() on reset_world (models) and reset_simulation (all), deleted with
+// what owns it. Sensor, visual and GUI plug-ins are not offered: their classes and macros are not declared, so such a
+// plug-in does not build against car.
 #pragma once
 
 #include <sdf/sdf.hh>
@@ -17,8 +19,20 @@ namespace gazebo {
 
 enum PluginType { WORLD_PLUGIN, MODEL_PLUGIN, SENSOR_PLUGIN, SYSTEM_PLUGIN, VISUAL_PLUGIN, GUI_PLUGIN };
 
+// car: what every plug-in class shares, so that the loader can tell which class a library's RegisterPlugin made.
+class PluginBase {
+ public:
+  virtual ~PluginBase() = default;
+  // car: set by the loader before Load.
+  std::string filename;
+  std::string handleName;
+
+ protected:
+  PluginType type = MODEL_PLUGIN;
+};
+
 template <class T>
-class PluginT {
+class PluginT : public PluginBase {
  public:
   using TPtr = boost::shared_ptr<T>;
   PluginT() = default;
@@ -41,14 +55,6 @@ class PluginT {
                  const char* _defaultValue) const {
     this->LoadParam<std::string>(_sdf, _name, _target, _defaultValue);
   }
-
- public:
-  // car: set by the loader before Load.
-  std::string filename;
-  std::string handleName;
-
- protected:
-  PluginType type = MODEL_PLUGIN;
 };
 
 class ModelPlugin : public PluginT<ModelPlugin> {
@@ -60,7 +66,33 @@ class ModelPlugin : public PluginT<ModelPlugin> {
   virtual void Reset() {}
 };
 
+class WorldPlugin : public PluginT<WorldPlugin> {
+ public:
+  WorldPlugin() { this->type = WORLD_PLUGIN; }
+  virtual ~WorldPlugin() {}
+  virtual void Load(physics::WorldPtr _world, sdf::ElementPtr _sdf) = 0;
+  virtual void Init() {}
+  virtual void Reset() {}
+};
+
+class SystemPlugin : public PluginT<SystemPlugin> {
+ public:
+  SystemPlugin() { this->type = SYSTEM_PLUGIN; }
+  virtual ~SystemPlugin() {}
+  virtual void Load(int _argc = 0, char** _argv = NULL) = 0;
+  virtual void Init() {}
+  virtual void Reset() {}
+};
+
 }  // namespace gazebo
+
+#define GZ_REGISTER_WORLD_PLUGIN(classname)                                 \
+  extern "C" GZ_PLUGIN_VISIBLE gazebo::WorldPlugin* RegisterPlugin();       \
+  gazebo::WorldPlugin* RegisterPlugin() { return new classname(); }
+
+#define GZ_REGISTER_SYSTEM_PLUGIN(classname)                                \
+  extern "C" GZ_PLUGIN_VISIBLE gazebo::SystemPlugin* RegisterPlugin();      \
+  gazebo::SystemPlugin* RegisterPlugin() { return new classname(); }
 
 #define GZ_REGISTER_MODEL_PLUGIN(classname)                                 \
   extern "C" GZ_PLUGIN_VISIBLE gazebo::ModelPlugin* RegisterPlugin();       \

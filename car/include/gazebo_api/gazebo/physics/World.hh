@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <boost/weak_ptr.hpp>
+#include <sdf/sdf.hh>
 
 #include "gazebo/common/Time.hh"
 #include "gazebo/physics/PhysicsTypes.hh"
@@ -41,6 +42,21 @@ class World : public boost::enable_shared_from_this<World> {
   bool PhysicsEnabled() const;
   // Off: a step advances sim time and raises the events; nothing moves.
   void SetPhysicsEnabled(const bool _enable);
+
+  // car's pause flag (the one /gazebo/pause_physics sets): SetPaused raises event::Events::pause when it changes.
+  bool IsPaused() const;
+  void SetPaused(bool _p);
+  // reset_simulation: time to 0, every model back, the models' and world's plug-ins' Reset (Gazebo's World::Reset,
+  // which pauses for it: the pause event fires twice when the world was running). Called inside an update event,
+  // it is done at the end of that step.
+  void Reset();
+  // Model insertion (Gazebo's factory): the model appears at the end of the next step (car's pacer also inserts
+  // while paused), its plug-ins loaded then; a name taken gets _0, _1, ... (docs/PLUGINS.md "Inserting models").
+  // A file: model://NAME through car's model path (GAZEBO_MODEL_PATH, then car's models/), or a path.
+  void InsertModelFile(const std::string& _sdfFilename);
+  // An SDF document holding a <model> (or a <world> with one).
+  void InsertModelString(const std::string& _sdfString);
+  void InsertModelSDF(const sdf::SDF& _sdf);
 
   // car: the core world, and whether a step's WorldUpdateBegin is running (SimTime counts the coming step).
   car_sim::World* Core() const { return world; }
