@@ -12,6 +12,7 @@
 #include "gazebo/common/Plugin.hh"
 #include "gazebo/physics/Model.hh"
 #include "gazebo/physics/World.hh"
+#include "gazebo/sensors/sensors.hh"
 #include "hub.hpp"
 
 namespace car_gazebo {
@@ -118,6 +119,23 @@ sdf::ElementPtr plugin_sdf(const car_sim::SharedPluginContext& ctx) {
   return e;
 }
 
+// The <plugin> element's parent, as Gazebo's: the <model name> (a sensor's plug-in: the <sensor name type>), which
+// plug-ins read through _sdf->GetParent() (Kobuki's takes its model's name so). Its holder keeps it alive: an
+// element holds its parent weakly.
+sdf::ElementPtr plugin_parent(const car_sim::SharedPluginContext& ctx, const sdf::ElementPtr& plugin) {
+  auto p = std::make_shared<sdf::Element>();
+  p->SetName(ctx.in_sensor ? "sensor" : "model");
+  p->AddAttribute("name", "string", "", true);
+  p->GetAttribute("name")->SetFromString(ctx.in_sensor ? ctx.sensor.name : ctx.model);
+  if (ctx.in_sensor) {
+    p->AddAttribute("type", "string", "", true);
+    p->GetAttribute("type")->SetFromString(ctx.sensor.type);
+  }
+  plugin->SetParent(p);
+  p->InsertElement(plugin);
+  return p;
+}
+
 // A model plug-in with what keeps its world's events going while it lives.
 class Running : public car_sim::SharedPlugin {
  public:
@@ -131,12 +149,50 @@ class Running : public car_sim::SharedPlugin {
   }
   std::shared_ptr<Hub> hub;
   gazebo::physics::ModelPtr model;
+  sdf::ElementPtr sdf_parent;
   std::unique_ptr<gazebo::ModelPlugin> plugin;
 };
+
+// A sensor offered to Gazebo's sensors API, with its plug-in when it has one; in SensorManager while it lives.
+class RunningSensor : public car_sim::SharedPlugin {
+ public:
+  ~RunningSensor() override {
+    CurrentHub in(hub.get());
+    plugin.reset();
+    if (sensor) gazebo::sensors::SensorManager::Instance()->CarRemove(sensor);
+  }
+  void reset() override {
+    CurrentHub in(hub.get());
+    if (plugin) plugin->Reset();
+  }
+  bool sensor_active() const override { return sensor->IsActive(); }
+  void sensor_update(uint64_t tick, const car_sim::Output* sample) override {
+    CurrentHub in(hub.get());
+    sensor->CarUpdate(time_of(tick, hub->core->dt()), sample);
+  }
+  std::shared_ptr<Hub> hub;
+  gazebo::sensors::SensorPtr sensor;
+  sdf::ElementPtr sdf_parent;
+  std::unique_ptr<gazebo::SensorPlugin> plugin;
+};
+
+// The sensor class for a <sensor type> (the types car_sim::sensor_feed_kind serves).
+gazebo::sensors::SensorPtr make_sensor(const car_sim::SharedPluginContext& ctx) {
+  namespace gs = gazebo::sensors;
+  const std::string world = ctx.world->description().name;
+  const std::string& t = ctx.sensor.type;
+  if (t == "ray" || t == "gpu_ray") return std::make_shared<gs::RaySensor>(ctx.sensor, world, ctx.model, ctx.sensor_keys);
+  if (t == "contact") return std::make_shared<gs::ContactSensor>(ctx.sensor, world, ctx.model, ctx.sensor_keys);
+  if (t == "imu") return std::make_shared<gs::ImuSensor>(ctx.sensor, world, ctx.model, ctx.sensor_keys);
+  if (t == "camera") return std::make_shared<gs::CameraSensor>(ctx.sensor, world, ctx.model, ctx.sensor_keys);
+  if (t == "depth") return std::make_shared<gs::DepthCameraSensor>(ctx.sensor, world, ctx.model, ctx.sensor_keys);
+  throw std::runtime_error("sensor type '" + t + "' is not offered by car's Gazebo sensors API");
+}
 
 class Host : public car_sim::SharedPluginHost {
  public:
   std::unique_ptr<car_sim::SharedPlugin> load(void* register_fn, const car_sim::SharedPluginContext& ctx) override {
+    if (ctx.in_sensor) return load_sensor(register_fn, ctx);
     auto run = std::make_unique<Running>();
     run->hub = Hub::of(ctx.world);
     CurrentHub in(run->hub.get());
@@ -149,7 +205,38 @@ class Host : public car_sim::SharedPluginHost {
     run->plugin->handleName = ctx.name;
     run->model = run->hub->world->ModelByName(ctx.model);
     try {
-      run->plugin->Load(run->model, plugin_sdf(ctx));
+      const sdf::ElementPtr sdf = plugin_sdf(ctx);
+      run->sdf_parent = plugin_parent(ctx, sdf);
+      run->plugin->Load(run->model, sdf);
+      run->plugin->Init();
+    } catch (const std::exception& e) {
+      throw std::runtime_error(std::string("Load threw: ") + e.what());
+    } catch (...) {
+      throw std::runtime_error("Load threw an exception that is not a std::exception");
+    }
+    return run;
+  }
+
+  // The sensor into SensorManager, then its plug-in (when it has one): Load(sensor, sdf) and Init(), as Gazebo's
+  // Sensor::LoadPlugin.
+  std::unique_ptr<car_sim::SharedPlugin> load_sensor(void* register_fn, const car_sim::SharedPluginContext& ctx) {
+    auto run = std::make_unique<RunningSensor>();
+    run->hub = Hub::of(ctx.world);
+    CurrentHub in(run->hub.get());
+    run->sensor = make_sensor(ctx);
+    gazebo::sensors::SensorManager::Instance()->CarAdd(run->sensor);
+    if (!register_fn) return run;
+    using Factory = gazebo::SensorPlugin* (*)();
+    run->plugin.reset(reinterpret_cast<Factory>(register_fn)());
+    if (!run->plugin) throw std::runtime_error("RegisterPlugin returned no plug-in");
+    if (run->plugin->GetType() != gazebo::SENSOR_PLUGIN)
+      throw std::runtime_error("it is not a sensor plug-in (type " + std::to_string(run->plugin->GetType()) + ")");
+    run->plugin->filename = ctx.filename;
+    run->plugin->handleName = ctx.name;
+    try {
+      const sdf::ElementPtr sdf = plugin_sdf(ctx);
+      run->sdf_parent = plugin_parent(ctx, sdf);
+      run->plugin->Load(run->sensor, sdf);
       run->plugin->Init();
     } catch (const std::exception& e) {
       throw std::runtime_error(std::string("Load threw: ") + e.what());

@@ -1,8 +1,9 @@
 // car's Gazebo 11 API (docs/PLUGINS.md): the plug-in base classes and their registration macros. A library that
 // registers a model plug-in is loaded by car's plug-in table (src/plugins/shared_library/) and run by car_gazebo:
 // Load(model, sdf), Init(), the update events each step, Reset() on reset_world and reset_simulation, deleted with
-// its model. World, sensor, system, visual and GUI plug-ins are not offered yet: their classes and macros are not
-// declared, so such a plug-in does not build against car.
+// its model. A sensor plug-in (in a <sensor>) gets Load(sensor, sdf) and Init() with its sensor. World, system,
+// visual and GUI plug-ins are not offered yet: their classes and macros are not declared, so such a plug-in does
+// not build against car.
 #pragma once
 
 #include <sdf/sdf.hh>
@@ -10,6 +11,7 @@
 
 #include "gazebo/common/Console.hh"
 #include "gazebo/physics/PhysicsTypes.hh"
+#include "gazebo/sensors/SensorTypes.hh"
 
 #define GZ_PLUGIN_VISIBLE __attribute__((visibility("default")))
 
@@ -60,8 +62,22 @@ class ModelPlugin : public PluginT<ModelPlugin> {
   virtual void Reset() {}
 };
 
+// A plug-in in a <sensor>: loaded with its sensor as parent, as Gazebo's Sensor::LoadPlugin.
+class SensorPlugin : public PluginT<SensorPlugin> {
+ public:
+  SensorPlugin() { this->type = SENSOR_PLUGIN; }
+  virtual ~SensorPlugin() {}
+  virtual void Load(sensors::SensorPtr _sensor, sdf::ElementPtr _sdf) = 0;
+  virtual void Init() {}
+  virtual void Reset() {}
+};
+
 }  // namespace gazebo
 
 #define GZ_REGISTER_MODEL_PLUGIN(classname)                                 \
   extern "C" GZ_PLUGIN_VISIBLE gazebo::ModelPlugin* RegisterPlugin();       \
   gazebo::ModelPlugin* RegisterPlugin() { return new classname(); }
+
+#define GZ_REGISTER_SENSOR_PLUGIN(classname)                                \
+  extern "C" GZ_PLUGIN_VISIBLE gazebo::SensorPlugin* RegisterPlugin();      \
+  gazebo::SensorPlugin* RegisterPlugin() { return new classname(); }
