@@ -4,6 +4,7 @@
 // No Gazebo header here: the core knows the skin only through SharedPluginHost.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -13,6 +14,8 @@
 namespace car_sim {
 
 class World;
+struct Output;
+struct PluginKind;
 
 // Where a plug-in from a library sits, which says the class its RegisterPlugin must make (Gazebo's PluginType).
 enum class PluginPlace {
@@ -32,6 +35,11 @@ struct SharedPluginContext {
   std::string path;      // the file loaded
   ParamList params;      // the <plugin>'s elements, flattened ("a/b" for <a><b>)
   std::string xml;       // the <plugin> element as written, when known (a world's): its sdf keeps order and repeats
+  // A sensor's plug-in, or a sensor with no plug-in that Gazebo's sensors API offers (filename ""): the <sensor>
+  // it belongs to (in_sensor true). Its samples come from car's own kind for the sensor's type (sensor_feed_kind).
+  bool in_sensor = false;
+  SensorSpec sensor;
+  ParamList sensor_keys;  // the sensor's keys as that kind resolved them, its defaults filled in ("ray/range/max")
 };
 
 // A running plug-in, held by the skin; destroyed with its model (unload).
@@ -40,6 +48,11 @@ class SharedPlugin {
   virtual ~SharedPlugin() = default;
   // reset_world and reset_simulation: the plug-in's Reset.
   virtual void reset() = 0;
+  // A sensor's: whether it measures now (Gazebo's Sensor::IsActive); while not, car's kind is not run for it.
+  virtual bool sensor_active() const { return false; }
+  // A sensor's: a measurement at `tick` (the tick reached), when its update_rate is due and it is active; `sample`
+  // is the output car's kind made for it (nullptr when it made none).
+  virtual void sensor_update(uint64_t tick, const Output* sample) {}
 };
 
 // The skin that runs a library's plug-ins. load() calls the factory `register_fn` (the library's RegisterPlugin)
@@ -47,6 +60,7 @@ class SharedPlugin {
 class SharedPluginHost {
  public:
   virtual ~SharedPluginHost() = default;
+  // For a sensor (ctx.in_sensor) it makes the sensor and, when register_fn is not null, loads the sensor's plug-in.
   virtual std::unique_ptr<SharedPlugin> load(void* register_fn, const SharedPluginContext& ctx) = 0;
 };
 
@@ -73,5 +87,11 @@ bool upstream_plugin_wanted(const std::string& filename);
 // The file for a <plugin filename>: an absolute path as it is when it exists, else the first folder of `dirs` that
 // has it; "" when none has.
 std::string find_shared_plugin(const std::string& filename, const std::vector<std::string>& dirs);
+
+// The kind of car's own that measures for Gazebo's sensors API on a <sensor type> (ray and gpu_ray: laser; contact:
+// bumper; imu: imu_sensor; camera: camera; depth: depth_camera), and the file name it is resolved as; nullptr and ""
+// for a type the API does not offer.
+const PluginKind* sensor_feed_kind(const std::string& sensor_type);
+std::string sensor_feed_file(const std::string& sensor_type);
 
 }  // namespace car_sim

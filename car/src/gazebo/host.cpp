@@ -14,6 +14,7 @@
 #include "gazebo/common/Plugin.hh"
 #include "gazebo/physics/Model.hh"
 #include "gazebo/physics/World.hh"
+#include "gazebo/sensors/sensors.hh"
 #include "hub.hpp"
 
 namespace car_gazebo {
@@ -156,6 +157,23 @@ sdf::ElementPtr plugin_sdf(const car_sim::SharedPluginContext& ctx) {
   return e;
 }
 
+// The <plugin> element's parent, as Gazebo's: the <model name> (a sensor's plug-in: the <sensor name type>), which
+// plug-ins read through _sdf->GetParent() (Kobuki's takes its model's name so). Its holder keeps it alive: an
+// element holds its parent weakly.
+sdf::ElementPtr plugin_parent(const car_sim::SharedPluginContext& ctx, const sdf::ElementPtr& plugin) {
+  auto p = std::make_shared<sdf::Element>();
+  p->SetName(ctx.in_sensor ? "sensor" : "model");
+  p->AddAttribute("name", "string", "", true);
+  p->GetAttribute("name")->SetFromString(ctx.in_sensor ? ctx.sensor.name : ctx.model);
+  if (ctx.in_sensor) {
+    p->AddAttribute("type", "string", "", true);
+    p->GetAttribute("type")->SetFromString(ctx.sensor.type);
+  }
+  plugin->SetParent(p);
+  p->InsertElement(plugin);
+  return p;
+}
+
 // A plug-in (model, world or system) with what keeps its world's events going while it lives.
 class Running : public car_sim::SharedPlugin {
  public:
@@ -169,6 +187,7 @@ class Running : public car_sim::SharedPlugin {
   }
   std::shared_ptr<Hub> hub;
   gazebo::physics::ModelPtr model;
+  sdf::ElementPtr sdf_parent;
   std::unique_ptr<gazebo::PluginBase> plugin;
   std::function<void()> do_reset;
   // a system plug-in's argv: it may keep the pointers, as gzserver's live as long as the process
@@ -181,6 +200,7 @@ std::string kind_of(gazebo::PluginBase* p) {
   if (dynamic_cast<gazebo::ModelPlugin*>(p)) return "a model plug-in (GZ_REGISTER_MODEL_PLUGIN)";
   if (dynamic_cast<gazebo::WorldPlugin*>(p)) return "a world plug-in (GZ_REGISTER_WORLD_PLUGIN)";
   if (dynamic_cast<gazebo::SystemPlugin*>(p)) return "a system plug-in (GZ_REGISTER_SYSTEM_PLUGIN)";
+  if (dynamic_cast<gazebo::SensorPlugin*>(p)) return "a sensor plug-in (GZ_REGISTER_SENSOR_PLUGIN)";
   return "a plug-in of a type car does not load here";
 }
 
@@ -209,9 +229,46 @@ void guarded(Fn&& fn) {
   }
 }
 
+// A sensor offered to Gazebo's sensors API, with its plug-in when it has one; in SensorManager while it lives.
+class RunningSensor : public car_sim::SharedPlugin {
+ public:
+  ~RunningSensor() override {
+    CurrentHub in(hub.get());
+    plugin.reset();
+    if (sensor) gazebo::sensors::SensorManager::Instance()->CarRemove(sensor);
+  }
+  void reset() override {
+    CurrentHub in(hub.get());
+    if (plugin) plugin->Reset();
+  }
+  bool sensor_active() const override { return sensor->IsActive(); }
+  void sensor_update(uint64_t tick, const car_sim::Output* sample) override {
+    CurrentHub in(hub.get());
+    sensor->CarUpdate(time_of(tick, hub->core->dt()), sample);
+  }
+  std::shared_ptr<Hub> hub;
+  gazebo::sensors::SensorPtr sensor;
+  sdf::ElementPtr sdf_parent;
+  std::unique_ptr<gazebo::SensorPlugin> plugin;
+};
+
+// The sensor class for a <sensor type> (the types car_sim::sensor_feed_kind serves).
+gazebo::sensors::SensorPtr make_sensor(const car_sim::SharedPluginContext& ctx) {
+  namespace gs = gazebo::sensors;
+  const std::string world = ctx.world->description().name;
+  const std::string& t = ctx.sensor.type;
+  if (t == "ray" || t == "gpu_ray") return std::make_shared<gs::RaySensor>(ctx.sensor, world, ctx.model, ctx.sensor_keys);
+  if (t == "contact") return std::make_shared<gs::ContactSensor>(ctx.sensor, world, ctx.model, ctx.sensor_keys);
+  if (t == "imu") return std::make_shared<gs::ImuSensor>(ctx.sensor, world, ctx.model, ctx.sensor_keys);
+  if (t == "camera") return std::make_shared<gs::CameraSensor>(ctx.sensor, world, ctx.model, ctx.sensor_keys);
+  if (t == "depth") return std::make_shared<gs::DepthCameraSensor>(ctx.sensor, world, ctx.model, ctx.sensor_keys);
+  throw std::runtime_error("sensor type '" + t + "' is not offered by car's Gazebo sensors API");
+}
+
 class Host : public car_sim::SharedPluginHost {
  public:
   std::unique_ptr<car_sim::SharedPlugin> load(void* register_fn, const car_sim::SharedPluginContext& ctx) override {
+    if (ctx.in_sensor) return load_sensor(register_fn, ctx);
     auto run = std::make_unique<Running>();
     run->hub = Hub::of(ctx.world);
     CurrentHub in(run->hub.get());
@@ -229,7 +286,9 @@ class Host : public car_sim::SharedPluginHost {
                            "a model's <plugin> takes a model plug-in (GZ_REGISTER_MODEL_PLUGIN)");
         run->model = run->hub->world->ModelByName(ctx.model);
         guarded([&] {
-          p->Load(run->model, plugin_sdf(ctx));
+          const sdf::ElementPtr sdf = plugin_sdf(ctx);
+          run->sdf_parent = plugin_parent(ctx, sdf);
+          p->Load(run->model, sdf);
           p->Init();
         });
         run->do_reset = [p] { p->Reset(); };
@@ -262,6 +321,35 @@ class Host : public car_sim::SharedPluginHost {
         break;
       }
     }
+    return run;
+  }
+
+  // The sensor into SensorManager, then its plug-in (when it has one): Load(sensor, sdf) and Init(), as Gazebo's
+  // Sensor::LoadPlugin.
+  std::unique_ptr<car_sim::SharedPlugin> load_sensor(void* register_fn, const car_sim::SharedPluginContext& ctx) {
+    auto run = std::make_unique<RunningSensor>();
+    run->hub = Hub::of(ctx.world);
+    CurrentHub in(run->hub.get());
+    run->sensor = make_sensor(ctx);
+    gazebo::sensors::SensorManager::Instance()->CarAdd(run->sensor);
+    if (!register_fn) return run;
+    using Factory = gazebo::PluginBase* (*)();
+    std::unique_ptr<gazebo::PluginBase> made(reinterpret_cast<Factory>(register_fn)());
+    if (!made) throw std::runtime_error("RegisterPlugin returned no plug-in");
+    auto* p = dynamic_cast<gazebo::SensorPlugin*>(made.get());
+    if (!p)
+      throw wrong_type("Sensor[" + ctx.sensor.name + "]", ctx, made.get(),
+                       "a <plugin> in <sensor> takes a sensor plug-in (GZ_REGISTER_SENSOR_PLUGIN)");
+    made.release();
+    run->plugin.reset(p);
+    run->plugin->filename = ctx.filename;
+    run->plugin->handleName = ctx.name;
+    guarded([&] {
+      const sdf::ElementPtr sdf = plugin_sdf(ctx);
+      run->sdf_parent = plugin_parent(ctx, sdf);
+      run->plugin->Load(run->sensor, sdf);
+      run->plugin->Init();
+    });
     return run;
   }
 };

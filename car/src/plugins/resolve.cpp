@@ -10,6 +10,7 @@
 #include "car_sim/plugin.hpp"
 #include "car_sim/shared_plugin.hpp"
 #include "validate.hpp"
+#include "shared_library/shared_library.hpp"
 #include "xml_util.hpp"
 
 namespace car_sim {
@@ -166,6 +167,45 @@ void resolve_into(const RobotModel& m, const PluginKind& kind, const PluginSpec&
   }
 }
 
+// A sensor for Gazebo's sensors API (docs/PLUGINS.md "Sensors"): its plug-in from a library `p` (nullptr: a sensor
+// with no plug-in), resolved as car's own kind for the sensor's type would be (the sensor's keys, the kind's
+// defaults), then marked as the shared-library kind with the library's file and elements.
+void resolve_sensor_feed(const RobotModel& m, const SensorSpec& s, const PluginSpec* p, std::vector<PluginConfig>* out,
+                         std::vector<Diagnostic>* diags) {
+  const std::string where = p ? "sensor[" + s.name + "]/plugin[" + p->name + "]" : "sensor[" + s.name + "]";
+  const PluginKind* feed = sensor_feed_kind(s.type);
+  if (!feed) {
+    if (p)
+      diags->push_back({Severity::Warning, "plugin-not-loaded", where,
+                        "sensor type '" + s.type + "' is not offered by car's Gazebo sensors API (ray, gpu_ray, " +
+                            "contact, imu, camera, depth); the plug-in " + p->filename + " is not loaded",
+                        p->line});
+    return;
+  }
+  PluginSpec own;
+  own.name = p ? p->name : s.name;
+  own.filename = sensor_feed_file(s.type);
+  own.line = p ? p->line : s.line;
+  own.params = sensor_feed_params(s);
+  try {
+    std::vector<Diagnostic> mine;
+    PluginConfig c = resolve_one(m, *feed, own, &s, &mine);
+    for (const Diagnostic& d : mine) {
+      bool car_s = false;
+      for (const auto& kv : own.params)
+        car_s = car_s || d.element == "sensor[" + s.name + "]/plugin[" + own.name + "]/" + kv.first;
+      if (!car_s) diags->push_back(d);
+    }
+    c.kind = shared_library_kind().name;
+    c.filename = p ? p->filename : "";
+    c.raw = p ? p->params : ParamList();
+    out->push_back(std::move(c));
+  } catch (const PluginNotLoaded& e) {
+    diags->push_back({Severity::Warning, "plugin-not-loaded", e.element(), e.reason() + "; the plug-in is not loaded",
+                      own.line});
+  }
+}
+
 }  // namespace
 
 PluginConfig resolve_plugin(const RobotModel& model, const PluginSpec& p, std::vector<Diagnostic>* diags) {
@@ -190,6 +230,7 @@ ModelConfig resolve_plugins(const RobotModel& m) {
     }
     resolve_into(m, *kind, p, nullptr, &out);
   }
+  std::vector<PluginConfig> feeds;  // the sensors of Gazebo's sensors API, with or without a plug-in
   std::set<std::string> sensor_types;
   for (const PluginKind* k : plugin_kinds()) sensor_types.insert(k->sensor_types.begin(), k->sensor_types.end());
   for (const auto& s : m.sensors) {
@@ -201,6 +242,10 @@ ModelConfig resolve_plugins(const RobotModel& m) {
                                  "sensor has no plug-in, so nothing is published for it", s.line});
     for (const auto& p : s.plugins) {
       const PluginKind* kind = plugin_kind_for_file(p.filename);
+      if (kind == &shared_library_kind()) {
+        resolve_sensor_feed(m, s, &p, &feeds, &out.diagnostics);
+        continue;
+      }
       if (!kind || kind->sensor_types.empty()) {
         warn_unknown(&out.diagnostics, "sensor[" + s.name + "]/plugin[" + p.name + "]", p);
         continue;
@@ -208,6 +253,15 @@ ModelConfig resolve_plugins(const RobotModel& m) {
       resolve_into(m, *kind, p, &s, &out);
     }
   }
+  // A robot that runs plug-ins from libraries offers its sensors with no plug-in to Gazebo's sensors API too
+  // (SensorManager finds them, as Kobuki's model plug-in does its bumper and cliff sensors); the sensors come
+  // before the robot's plug-ins from libraries, so that their Load finds them.
+  const auto is_library = [](const PluginConfig& c) { return c.kind == shared_library_kind().name; };
+  if (!feeds.empty() || std::any_of(out.plugins.begin(), out.plugins.end(), is_library))
+    for (const auto& s : m.sensors)
+      if (s.plugins.empty()) resolve_sensor_feed(m, s, nullptr, &feeds, &out.diagnostics);
+  const auto first = std::find_if(out.plugins.begin(), out.plugins.end(), is_library);
+  out.plugins.insert(first, feeds.begin(), feeds.end());
   return out;
 }
 

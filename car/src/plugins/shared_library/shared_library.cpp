@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <functional>
+#include <mutex>
 #include <sstream>
 
 #include "car_sim/shared_plugin.hpp"
@@ -32,10 +34,20 @@ bool is_file(const std::string& path) {
   return stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
 }
 
+class SharedLibraryPlugin;
+
+// Sensors whose world had no skin yet when they loaded (car_gazebo comes with the first plug-in library dlopened):
+// they come up as soon as a library of their world brings it, before that library's plug-in loads (a model
+// plug-in's Load looks its sensors up, as Kobuki's does).
+std::mutex g_pending_mutex;
+std::vector<SharedLibraryPlugin*> g_pending;
+
 // Opens a plug-in's library and hands its RegisterPlugin to the host: the one loader for model, world and system
 // plug-ins. `owner` names what goes on without it in the messages ("model 'M'", "world 'W'", "the server").
+// `before_load` runs once the skin is known to be there, just before the plug-in loads.
 std::unique_ptr<SharedPlugin> open_plugin(const SharedPluginContext& base, const std::string& owner,
-                                          const std::string& where, std::vector<Diagnostic>* diagnostics) {
+                                          const std::string& where, std::vector<Diagnostic>* diagnostics,
+                                          const std::function<void()>& before_load = {}) {
   auto fail = [&](const std::string& message) {
     diagnostics->push_back({Severity::Error, "plugin-not-loaded", where, message, 0});
     return nullptr;
@@ -61,6 +73,7 @@ std::unique_ptr<SharedPlugin> open_plugin(const SharedPluginContext& base, const
     return fail("plug-in '" + ctx.name + "' (" + path +
                 ") does not link car's Gazebo API (car_gazebo, find_package(gazebo)); " + owner + " goes on without it");
   ctx.path = path;
+  if (before_load) before_load();
   try {
     return host->load(fn, ctx);
   } catch (const std::exception& e) {
@@ -71,34 +84,135 @@ std::unique_ptr<SharedPlugin> open_plugin(const SharedPluginContext& base, const
 
 class SharedLibraryPlugin : public Plugin {
  public:
-  explicit SharedLibraryPlugin(const PluginConfig& c) : config_(c) {}
+  SharedLibraryPlugin(const PluginConfig& c, const std::string& robot, uint64_t seed) : config_(c), robot_(robot) {
+    if (c.sensor.empty()) return;
+    // a sensor's: car's own kind for its type measures, resolved from the same <sensor> (same seed and name, so the
+    // same noise; docs/PLUGINS.md "Sensors")
+    const PluginKind* feed = sensor_feed_kind(c.sensor_type);
+    PluginConfig own = c;
+    own.kind = feed->name;
+    own.filename = sensor_feed_file(c.sensor_type);
+    own.raw.clear();
+    feed_ = feed->make(own, robot, seed);
+  }
   ~SharedLibraryPlugin() override {
+    unpend();
     // unloaded with its model: the plug-in goes; the library stays open (its code may still be referenced by
     // objects the plug-in handed out, as in Gazebo, which never closes a plug-in's library either)
     running_.reset();
   }
 
-  double update_rate() const override { return 0.0; }
+  double update_rate() const override { return feed_ ? feed_->update_rate() : 0.0; }
+  Schedule schedule(double dt, uint64_t start_tick) const override {
+    return feed_ ? feed_->schedule(dt, start_tick) : Plugin::schedule(dt, start_tick);
+  }
+  void configure(RobotHandle& robot) override {
+    if (!feed_) return;
+    feed_->configure(robot);
+    feed_->set_active(true);
+  }
+  void start_clock(uint64_t tick) override {
+    if (feed_) feed_->start_clock(tick);
+  }
+  void track(const StepContext& ctx, const RobotHandle& robot) override {
+    if (feed_ && measuring()) feed_->track(ctx, robot);
+  }
+  void post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) override {
+    if (!feed_) return;
+    if (!measuring()) {
+      feed_->idle(ctx, robot);
+      return;
+    }
+    // the kind's outputs go to the sensor, not to the world's queue: nothing is published for them
+    OutputQueue own;
+    feed_->post_physics(ctx, robot, &own);
+    if (own.empty()) running_->sensor_update(ctx.tick, nullptr);
+    for (const OutputPtr& o : own) running_->sensor_update(ctx.tick, o.get());
+  }
 
   void loaded(World& world, std::vector<Diagnostic>* diagnostics) override {
+    world_ = &world;
+    diagnostics_ = diagnostics;
+    if (config_.filename.empty()) {
+      // a sensor with no plug-in: offered to Gazebo's sensors API once the skin is there
+      if (shared_plugin_host()) return bring_up_sensor();
+      std::lock_guard<std::mutex> lock(g_pending_mutex);
+      g_pending.push_back(this);
+      return;
+    }
+    const std::string where = config_.sensor.empty() ? "gazebo/plugin[" + config_.name + "]"
+                                                     : "sensor[" + config_.sensor + "]/plugin[" + config_.name + "]";
+    running_ = open_plugin(context(), "model '" + robot_ + "'", where, diagnostics,
+                           [&world] { bring_up_pending(&world); });
+  }
+
+  void reset() override {
+    if (feed_) feed_->reset();
+    if (running_) running_->reset();
+  }
+
+ private:
+  bool measuring() const { return running_ && running_->sensor_active(); }
+
+  // What the skin loads this plug-in (or plug-in-less sensor) with.
+  SharedPluginContext context() const {
     SharedPluginContext ctx;
-    ctx.world = &world;
+    ctx.world = world_;
     ctx.place = PluginPlace::Model;
     ctx.model = robot_;
     ctx.name = config_.name;
     ctx.filename = config_.filename;
     ctx.params = config_.raw;
-    running_ = open_plugin(ctx, "model '" + robot_ + "'", "gazebo/plugin[" + config_.name + "]", diagnostics);
+    if (!config_.sensor.empty()) {
+      ctx.in_sensor = true;
+      for (const SensorSpec& s : world_->robot(robot_).model.sensors)
+        if (s.name == config_.sensor) ctx.sensor = s;
+      // the link after lumping (a contact sensor's: its collision's), as the kind resolved it
+      ctx.sensor.link = config_.link;
+      for (const ResolvedParam& p : config_.params) ctx.sensor_keys.emplace_back(p.key, p.value);
+    }
+    return ctx;
   }
 
-  void reset() override {
-    if (running_) running_->reset();
+  // A sensor with no plug-in into Gazebo's sensors API.
+  void bring_up_sensor() {
+    try {
+      running_ = shared_plugin_host()->load(nullptr, context());
+    } catch (const std::exception& e) {
+      diagnostics_->push_back({Severity::Error, "plugin-not-loaded", "sensor[" + config_.sensor + "]",
+                               "sensor '" + config_.sensor + "' of model '" + robot_ + "' failed to load: " + e.what() +
+                                   "; the model goes on without it",
+                               0});
+    }
   }
 
-  std::string robot_;
+  // The sensors of `world` that waited for the skin.
+  static void bring_up_pending(World* world) {
+    std::vector<SharedLibraryPlugin*> mine;
+    {
+      std::lock_guard<std::mutex> lock(g_pending_mutex);
+      for (auto it = g_pending.begin(); it != g_pending.end();) {
+        if ((*it)->world_ == world) {
+          mine.push_back(*it);
+          it = g_pending.erase(it);
+        } else {
+          ++it;
+        }
+      }
+    }
+    for (SharedLibraryPlugin* p : mine) p->bring_up_sensor();
+  }
 
- private:
+  void unpend() {
+    std::lock_guard<std::mutex> lock(g_pending_mutex);
+    g_pending.erase(std::remove(g_pending.begin(), g_pending.end(), this), g_pending.end());
+  }
+
   PluginConfig config_;
+  std::string robot_;
+  std::unique_ptr<Plugin> feed_;  // a sensor's: car's own kind for its type
+  World* world_ = nullptr;
+  std::vector<Diagnostic>* diagnostics_ = nullptr;
   std::unique_ptr<SharedPlugin> running_;
 };
 
@@ -222,15 +336,49 @@ std::unique_ptr<SharedPlugin> load_system_plugin(World& world, const std::string
   return open_plugin(ctx, "the server", where, diagnostics);
 }
 
+namespace {
+
+struct Feed {
+  const char* type;
+  const char* file;  // the file of car's kind that measures it
+};
+// Gazebo's sensor types the API offers, each measured by car's kind for the gazebo_ros plug-in of that type
+const Feed kFeeds[] = {
+    {"ray", "libgazebo_ros_laser.so"},          {"gpu_ray", "libgazebo_ros_gpu_laser.so"},
+    {"contact", "libgazebo_ros_bumper.so"},     {"imu", "libgazebo_ros_imu_sensor.so"},
+    {"camera", "libgazebo_ros_camera.so"},      {"depth", "libgazebo_ros_depth_camera.so"},
+};
+
+}  // namespace
+
+std::string sensor_feed_file(const std::string& sensor_type) {
+  for (const Feed& f : kFeeds)
+    if (sensor_type == f.type) return f.file;
+  return "";
+}
+
+ParamList sensor_feed_params(const SensorSpec& sensor) {
+  if (sensor.type == "imu")
+    return {{"frameName", sensor.link}, {"updateRateHZ", "0"}, {"initialOrientationAsReference", "true"}};
+  return {};
+}
+
+const PluginKind* sensor_feed_kind(const std::string& sensor_type) {
+  const std::string file = sensor_feed_file(sensor_type);
+  if (file.empty()) return nullptr;
+  for (const PluginKind* k : plugin_kinds())
+    for (const auto& f : k->filenames)
+      if (f == file) return k;
+  return nullptr;
+}
+
 const PluginKind& shared_library_kind() {
   static const PluginKind k = [] {
     PluginKind k;
     k.name = "shared_library";
     k.any_keys = true;
-    k.make = [](const PluginConfig& c, const std::string& robot, uint64_t) {
-      auto p = std::make_unique<SharedLibraryPlugin>(c);
-      p->robot_ = robot;
-      return std::unique_ptr<Plugin>(std::move(p));
+    k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) {
+      return std::unique_ptr<Plugin>(std::make_unique<SharedLibraryPlugin>(c, robot, seed));
     };
     return k;
   }();

@@ -10,4 +10,10 @@ namespace car_sim {
 
 const PluginKind& shared_library_kind();
 
+// The <plugin> keys car's kind for a sensor type is resolved with when it measures for Gazebo's sensors API, so
+// that it measures as the bare sensor (imu: every measurement, the orientation from the sensor's own at load as
+// Gazebo's ImuSensor::Orientation; a frame name, which gazebo_ros's plug-in requires). Diagnostics at these keys
+// are car's, not the user's: they are not reported.
+ParamList sensor_feed_params(const SensorSpec& sensor);
+
 }  // namespace car_sim

@@ -1,10 +1,10 @@
 // car's Gazebo 11 API (docs/PLUGINS.md): the plug-in base classes and their registration macros, as
 // gazebo/common/Plugin.hh declares them. car's plug-in table (src/plugins/shared_library/) loads a library and
 // car_gazebo runs what its RegisterPlugin makes: a ModelPlugin for a model's <plugin> (Load(model, sdf)), a
-// WorldPlugin for a <plugin> in <world> (Load(world, sdf)), a SystemPlugin for gzserver's -s (Load(argc, argv));
-// then Init(), the update events each step, Reset() on reset_world (models) and reset_simulation (all), deleted with
-// what owns it. Sensor, visual and GUI plug-ins are not offered: their classes and macros are not declared, so such a
-// plug-in does not build against car.
+// WorldPlugin for a <plugin> in <world> (Load(world, sdf)), a SystemPlugin for gzserver's -s (Load(argc, argv)), a
+// SensorPlugin for a <plugin> in a <sensor> (Load(sensor, sdf)); then Init(), the update events each step, Reset() on
+// reset_world (models) and reset_simulation (all), deleted with what owns it. Visual and GUI plug-ins are not
+// offered: their classes and macros are not declared, so such a plug-in does not build against car.
 #pragma once
 
 #include <sdf/sdf.hh>
@@ -12,6 +12,7 @@
 
 #include "gazebo/common/Console.hh"
 #include "gazebo/physics/PhysicsTypes.hh"
+#include "gazebo/sensors/SensorTypes.hh"
 
 #define GZ_PLUGIN_VISIBLE __attribute__((visibility("default")))
 
@@ -84,6 +85,16 @@ class SystemPlugin : public PluginT<SystemPlugin> {
   virtual void Reset() {}
 };
 
+// A plug-in in a <sensor>: loaded with its sensor as parent, as Gazebo's Sensor::LoadPlugin.
+class SensorPlugin : public PluginT<SensorPlugin> {
+ public:
+  SensorPlugin() { this->type = SENSOR_PLUGIN; }
+  virtual ~SensorPlugin() {}
+  virtual void Load(sensors::SensorPtr _sensor, sdf::ElementPtr _sdf) = 0;
+  virtual void Init() {}
+  virtual void Reset() {}
+};
+
 }  // namespace gazebo
 
 #define GZ_REGISTER_WORLD_PLUGIN(classname)                                 \
@@ -97,3 +108,7 @@ class SystemPlugin : public PluginT<SystemPlugin> {
 #define GZ_REGISTER_MODEL_PLUGIN(classname)                                 \
   extern "C" GZ_PLUGIN_VISIBLE gazebo::ModelPlugin* RegisterPlugin();       \
   gazebo::ModelPlugin* RegisterPlugin() { return new classname(); }
+
+#define GZ_REGISTER_SENSOR_PLUGIN(classname)                                \
+  extern "C" GZ_PLUGIN_VISIBLE gazebo::SensorPlugin* RegisterPlugin();      \
+  gazebo::SensorPlugin* RegisterPlugin() { return new classname(); }

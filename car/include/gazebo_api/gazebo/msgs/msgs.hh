@@ -1,10 +1,19 @@
-// car's Gazebo 11 API (docs/PLUGINS.md): the one message car's transport carries, msgs::Factory (a model to insert,
-// Gazebo's ~/factory topic), with msgs::Pose and the msgs::Set / ConvertIgn of a pose, as gazebo/msgs/msgs.hh and
-// factory.proto declare them. Plain classes, not protobuf: the other messages are not declared.
+// car's Gazebo 11 API (docs/PLUGINS.md): #include <gazebo/msgs/msgs.hh>, the messages car offers as plain classes
+// with protobuf's accessors (not protobuf): msgs::Factory (a model to insert, Gazebo's ~/factory topic) with
+// msgs::Pose, the contact messages a ContactSensor gives (contact.pb.h, ...), and the conversions to ignition-math.
+// The other messages are not declared.
 #pragma once
 
 #include <ignition/math/Pose3.hh>
+#include <ignition/math/Vector3.hh>
 #include <string>
+
+#include "gazebo/msgs/contact.pb.h"
+#include "gazebo/msgs/contacts.pb.h"
+#include "gazebo/msgs/joint_wrench.pb.h"
+#include "gazebo/msgs/time.pb.h"
+#include "gazebo/msgs/vector3d.pb.h"
+#include "gazebo/msgs/wrench.pb.h"
 
 namespace gazebo {
 namespace msgs {
@@ -41,6 +50,8 @@ class Factory {
 
 void Set(Pose* _p, const ignition::math::Pose3d& _v);
 ignition::math::Pose3d ConvertIgn(const Pose& _p);
+
+inline ignition::math::Vector3d ConvertIgn(const Vector3d& _v) { return {_v.x(), _v.y(), _v.z()}; }
 
 }  // namespace msgs
 }  // namespace gazebo
