@@ -4,12 +4,13 @@ package and its data come from the venv, car.World steps the tutorial's car in b
 and the console scripts `world_tool` and `car batch` (on Ray) run. Exit 0 when all hold; an AssertionError names
 the first that does not."""
 import importlib
+import importlib.util
 import os
 import subprocess
 import sys
 import tempfile
 
-# the modules a pip install offers: everything in car/ but the ROS nodes' (which import rospy when they run)
+# the modules a pip install offers: everything in car/ but car.ros, the ROS nodes' (not in the wheel)
 PYTHON_ONLY = ('car', 'car.paths', 'car.cli', 'car.world_cli', 'car.world_tools', 'car.world_map', 'car.world_plot',
                'car.world_geometry', 'car.world_cache', 'car.materials', 'car.inertia', 'car.xacro14',
                'car.xacro_tool', 'car.model_check', 'car.scenario', 'car.batch', 'car.batch_run', 'car.gym')
@@ -29,6 +30,8 @@ def main():
         importlib.import_module(name)
     ros = sorted(m for m in sys.modules if m.split('.')[0] in ('rospy', 'roslib', 'rospkg', 'rosgraph', 'roslaunch'))
     assert not ros, 'importing car pulled in ROS: %s' % ros
+    # the ROS nodes' modules are the catkin build's only (pyproject.toml's wheel.exclude)
+    assert importlib.util.find_spec('car.ros') is None, 'the wheel ships car.ros'
 
     import car
     from car.paths import package_dir

@@ -3,6 +3,7 @@
 // No ROS headers.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -99,6 +100,18 @@ std::string resolve_uri(const std::string& uri, const std::string& base_dir);  /
 // warnings, an <include> that names nothing or resolves nowhere is left out with a warning "include-missing", as
 // the simulator leaves it out (docs/COMPAT-validation.md); without, it is an error.
 std::string flatten_world_file(const std::string& path, std::vector<Diagnostic>* warnings = nullptr);
+
+// world_tool check's reading of a world file, in one call (docs/COMPAT-validation.md "world_tool check"): the file
+// flattened as flatten_world_file does (an include that resolves nowhere: the warning "include-missing"; a file it
+// cannot flatten: the error "world-unreadable" with its reason), the flattened world held to the check's rules
+// (pose-malformed, geometry-empty, geometry-unknown, uri-missing, geometry-unsimulated), then, when none of those is
+// an error, the flattened text read by the loader as load_world_string reads it (its refusal: the error "world-load",
+// "ELEMENT: REASON"; its warnings appended). Throws nothing for a bad world.
+struct WorldCheck {
+  std::vector<Diagnostic> findings;              // in the order found
+  std::shared_ptr<const WorldDescription> world;  // the loaded world; null when an error came first
+};
+WorldCheck check_world_file(const std::string& path);
 
 // Gazebo's empty world: a ground plane (mu 100, mu2 50) and a sun, 1 ms step.
 WorldDescription empty_world();

@@ -1,7 +1,7 @@
 """A live 3-D web view of a simulation, served by viser (its own three.js client over WebSockets).
 
 WebScene draws and drives; where its data comes from is the caller's business:
-- the ROS node `web_view` (car.web_view_node) feeds it from /tf, /scan, the depth cloud, the camera image, /clock
+- the ROS node `web_view` (car.ros.web_view_node) feeds it from /tf, /scan, the depth cloud, the camera image, /clock
   and /gazebo/model_states, and its drive panel publishes cmd_vel;
 - `car.web_view.view(world)` attaches it to a car._core.World stepped from Python (call view.update() after steps;
   view.step(n) does both).

@@ -73,15 +73,14 @@ def cmd_map(a) -> int:
     print('world_tool: %s + %s: %d x %d cells of %g m, origin (%g, %g), %d occupied, slab z %g..%g m'
           % (pgm, yml, grid.shape[1], grid.shape[0], a.resolution, origin[0], origin[1], occupied, a.z_min, a.z_max))
     if a.publish:
-        import rospy
-        from nav_msgs.msg import OccupancyGrid
-        rospy.init_node('world_map', anonymous=True)
-        pub = rospy.Publisher(a.topic, OccupancyGrid, queue_size=1, latch=True)
-        msg = world_map.to_occupancy_grid(grid, origin, a.resolution, a.frame)
-        msg.header.stamp = rospy.Time.now()
-        pub.publish(msg)
-        rospy.loginfo('world_map: %s latched on %s in frame %s', a.world, a.topic, a.frame)
-        rospy.spin()
+        # the one part of world_tool that needs ROS (car.ros and rospy; pip's wheel has neither)
+        import importlib.util
+        if importlib.util.find_spec('rospy') is None or importlib.util.find_spec('car.ros') is None:
+            print('world_tool: error: --publish needs ROS (rospy and car.ros, which a pip install lacks); the map '
+                  'is written', file=sys.stderr)
+            return 2
+        from car.ros import map_publisher
+        map_publisher.publish(grid, origin, a.resolution, a.frame, a.topic, a.world)
     return 0
 
 

@@ -124,15 +124,3 @@ def read_map(yaml_path: str):
     grid[p > meta['occupied_thresh']] = OCCUPIED
     grid[p < meta['free_thresh']] = FREE
     return grid, tuple(meta['origin'][:2]), float(meta['resolution'])
-
-
-def to_occupancy_grid(grid: np.ndarray, origin, resolution: float, frame_id: str):
-    from nav_msgs.msg import OccupancyGrid
-    msg = OccupancyGrid()
-    msg.header.frame_id = frame_id
-    msg.info.resolution = resolution
-    msg.info.height, msg.info.width = grid.shape
-    msg.info.origin.position.x, msg.info.origin.position.y = float(origin[0]), float(origin[1])
-    msg.info.origin.orientation.w = 1.0
-    msg.data = grid.ravel().tolist()  # row-major from the origin, as OccupancyGrid wants
-    return msg

@@ -1,4 +1,4 @@
-// Internal: the SDF geometry car simulates, for the world tools' check (car._core.simulated_geometry).
+// Internal: the SDF geometry car simulates (world_tool check's rule in validate.cpp; car._core.simulated_geometry).
 #pragma once
 
 #include <string>

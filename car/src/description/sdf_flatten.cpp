@@ -67,26 +67,12 @@ void read_sdf(const std::string& file, tinyxml2::XMLDocument* doc) {
   detail::refuse_entities(*doc, file);
 }
 
-// A pose 'x y z roll pitch yaw' as a 4x4 transform (empty: identity); throws at element when it is not 6 finite
-// numbers.
+// A pose 'x y z roll pitch yaw' as a 4x4 transform (blank: identity); throws at element when it is not 6 finite
+// numbers (detail::pose_problem, the rule world_tool check holds every <pose> to).
 Eigen::Matrix4d parse_pose(const std::string& text, const std::string& file, const std::string& element) {
-  const std::string t = detail::trim(text);
-  const auto toks = detail::split_ws(t);
-  if (toks.empty()) return Eigen::Matrix4d::Identity();
   std::vector<double> v;
-  for (const auto& tok : toks) {
-    char* end = nullptr;
-    const double x = std::strtod(tok.c_str(), &end);
-    // a decimal as Python's float() reads it (no hexadecimal)
-    if (end != tok.c_str() + tok.size() || tok.find_first_of("xX") != std::string::npos) {
-      v.clear();
-      break;
-    }
-    v.push_back(x);
-  }
-  if (v.size() != 6) throw LoadError(file, 0, element, "pose '" + t + "' is not 6 numbers (x y z roll pitch yaw)");
-  for (double x : v)
-    if (!std::isfinite(x)) throw LoadError(file, 0, element, "pose '" + t + "' has a non-finite value");
+  if (const std::string why = detail::pose_problem(text, &v); !why.empty()) throw LoadError(file, 0, element, why);
+  if (v.empty()) return Eigen::Matrix4d::Identity();
   const double cr = std::cos(v[3]), sr = std::sin(v[3]), cp = std::cos(v[4]), sp = std::sin(v[4]),
                cy = std::cos(v[5]), sy = std::sin(v[5]);
   Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
@@ -305,22 +291,25 @@ std::string declared_encoding(const tinyxml2::XMLDocument& doc) {
   return " encoding=\"" + name + "\"";
 }
 
-}  // namespace
-
-std::string flatten_world_file(const std::string& path, std::vector<Diagnostic>* warnings) {
-  tinyxml2::XMLDocument doc;
-  read_sdf(path, &doc);
-  tinyxml2::XMLElement* root = doc.RootElement();
+// The flattened document in doc (see flatten_world_file); returns its <world>.
+tinyxml2::XMLElement* flatten_document(const std::string& path, tinyxml2::XMLDocument* doc,
+                                       std::vector<Diagnostic>* warnings) {
+  read_sdf(path, doc);
+  tinyxml2::XMLElement* root = doc->RootElement();
   if (!root || std::string(root->Name()) != "sdf")
     throw LoadError(path, root ? root->GetLineNum() : 0, root ? root->Name() : "", "root element is not <sdf>");
   tinyxml2::XMLElement* world = root->FirstChildElement("world");
   if (!world) throw LoadError(path, root->GetLineNum(), "sdf", "no <world>");
-  Flattener(&doc, warnings).expand(world, folder_of(abspath(path)), path, "world[" + attr(world, "name") + "]", 0);
+  Flattener(doc, warnings).expand(world, folder_of(abspath(path)), path, "world[" + attr(world, "name") + "]", 0);
   hoist_nested(world, path);
   apply_state(world);
-  // the <sdf> element under a declaration of our own: the input's declarations, comments and unknown nodes are left
-  // out, since tinyxml2 writes some of them back in forms it cannot read again (a '<??xml' declaration, found by
-  // fuzz_flatten)
+  return world;
+}
+
+// The <sdf> element as text under a declaration of our own (with encoding, when not empty): the input's
+// declarations, comments and unknown nodes are left out, since tinyxml2 writes some of them back in forms it cannot
+// read again (a '<??xml' declaration, found by fuzz_flatten).
+std::string print_document(const tinyxml2::XMLDocument& doc, const std::string& encoding) {
   class Printer : public tinyxml2::XMLPrinter {
    public:
     Printer() : tinyxml2::XMLPrinter(nullptr, /*compact=*/true) {}
@@ -328,11 +317,88 @@ std::string flatten_world_file(const std::string& path, std::vector<Diagnostic>*
     bool Visit(const tinyxml2::XMLUnknown&) override { return true; }
     bool Visit(const tinyxml2::XMLDeclaration&) override { return true; }
   } printer;
+  printer.PushDeclaration(("xml version=\"1.0\"" + encoding).c_str());
+  doc.RootElement()->Accept(&printer);
+  return printer.CStr();
+}
+
+// The text in UTF-8 for the loader: an ISO-8859-1 document's bytes above 0x7f become two bytes each (tinyxml2
+// passes bytes through untranslated, and the loader's names reach Python as UTF-8).
+std::string utf8_of(const std::string& text, const std::string& encoding) {
+  std::string name;
+  for (const char c : encoding.substr(encoding.find('"') + 1))
+    if (std::isalnum(static_cast<unsigned char>(c))) name += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (name != "iso88591" && name != "latin1" && name != "l1") return text;
+  std::string out;
+  for (const char ch : text) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c < 0x80) {
+      out += ch;
+    } else {
+      out += static_cast<char>(0xc0 | (c >> 6));
+      out += static_cast<char>(0x80 | (c & 0x3f));
+    }
+  }
+  return out;
+}
+
+// The offset of the first byte that does not belong to a well-formed UTF-8 sequence, -1 when there is none.
+int first_non_utf8(const std::string& s) {
+  for (size_t i = 0; i < s.size();) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    const size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xe ? 3 : (c >> 3) == 0x1e ? 4 : 0;
+    if (n == 0 || i + n > s.size()) return static_cast<int>(i);
+    for (size_t k = 1; k < n; ++k)
+      if ((static_cast<unsigned char>(s[i + k]) >> 6) != 0x2) return static_cast<int>(i);
+    i += n;
+  }
+  return -1;
+}
+
+}  // namespace
+
+std::string flatten_world_file(const std::string& path, std::vector<Diagnostic>* warnings) {
+  tinyxml2::XMLDocument doc;
+  flatten_document(path, &doc, warnings);
   // the input's declared encoding is kept (tinyxml2 passes the bytes through untranslated), so the text reads back
   // as the input did: an ISO-8859-1 world stays ISO-8859-1
-  printer.PushDeclaration(("xml version=\"1.0\"" + declared_encoding(doc)).c_str());
-  root->Accept(&printer);
-  return printer.CStr();
+  return print_document(doc, declared_encoding(doc));
+}
+
+WorldCheck check_world_file(const std::string& path) {
+  WorldCheck out;
+  tinyxml2::XMLDocument doc;
+  const tinyxml2::XMLElement* world = nullptr;
+  try {
+    world = flatten_document(path, &doc, &out.findings);
+  } catch (const LoadError& e) {
+    out.findings.push_back({Severity::Error, "world-unreadable", e.element(), e.reason(), 0});
+    return out;
+  }
+  const std::vector<Diagnostic> rules = detail::check_world_xml(world);
+  out.findings.insert(out.findings.end(), rules.begin(), rules.end());
+  for (const auto& f : out.findings)
+    if (f.severity == Severity::Error) return out;
+  const std::string text = utf8_of(print_document(doc, ""), declared_encoding(doc));
+  if (const int bad = first_non_utf8(text); bad >= 0) {
+    char byte[8];
+    std::snprintf(byte, sizeof(byte), "0x%02x", static_cast<unsigned char>(text[bad]));
+    out.findings.push_back({Severity::Error, "world-unreadable", "",
+                            std::string("not UTF-8 text (byte ") + byte +
+                                "; car reads worlds in UTF-8, and in ISO-8859-1 where their declaration says so)",
+                            0});
+    return out;
+  }
+  try {
+    auto d = std::make_shared<WorldDescription>(load_world_string(text, path));
+    out.findings.insert(out.findings.end(), d->diagnostics.begin(), d->diagnostics.end());
+    out.world = std::move(d);
+  } catch (const LoadError& e) {
+    // the words of LoadError::what() after "FILE[:LINE]: "
+    out.findings.push_back(
+        {Severity::Error, "world-load", "", (e.element().empty() ? "" : e.element() + ": ") + e.reason(), 0});
+  }
+  return out;
 }
 
 }  // namespace car_sim

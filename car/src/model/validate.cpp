@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include "geometry.hpp"
 #include "xml_util.hpp"
 
 namespace car_sim {
@@ -637,6 +638,81 @@ void prevalidate_sdf(const std::string& xml, const std::string& source, const st
     chain.push_back(std::filesystem::weakly_canonical(source, ec).string());
   std::set<std::string> done;
   check_includes(doc.RootElement(), source, base_dir, &chain, &done);
+}
+
+std::string pose_problem(const std::string& text, std::vector<double>* values) {
+  const std::string t = trim(text);
+  const auto toks = split_ws(t);
+  std::vector<double> v;
+  for (const auto& tok : toks) {
+    char* end = nullptr;
+    const double x = std::strtod(tok.c_str(), &end);
+    // a decimal as Python's float() reads it: strtod's hexadecimal is not one
+    if (end != tok.c_str() + tok.size() || tok.find_first_of("xX") != std::string::npos) {
+      v.clear();
+      break;
+    }
+    v.push_back(x);
+  }
+  if (!toks.empty() && v.size() != 6) return "pose '" + t + "' is not 6 numbers (x y z roll pitch yaw)";
+  for (double x : v)
+    if (!std::isfinite(x)) return "pose '" + t + "' has a non-finite value";
+  if (values) *values = v;
+  return "";
+}
+
+const std::vector<std::string>& sdf_geometry_elements() {
+  static const std::vector<std::string> kNames = {"box",     "capsule", "cylinder", "ellipsoid", "empty",  "heightmap",
+                                                  "image",   "mesh",    "plane",    "polyline",  "sphere"};
+  return kNames;
+}
+
+namespace {
+
+// world_tool check's walk (check_world_xml): the children of e, each <pose> and <geometry> where it stands, every
+// other element's subtree right after it (document order). Recursive: tinyxml2 reads no document nested deeper
+// than TINYXML2_MAX_ELEMENT_DEPTH, so the depth is bounded.
+void check_world_children(const tinyxml2::XMLElement* e, const std::string& path, std::vector<Diagnostic>* out) {
+  auto listed = [](const std::vector<std::string>& names, const std::string& n) {
+    return std::find(names.begin(), names.end(), n) != names.end();
+  };
+  for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string tag = c->Name();
+    const char* name = c->Attribute("name");
+    const std::string here = path + "/" + (name && *name ? tag + "[" + name + "]" : tag);
+    if (tag == "pose") {
+      if (const std::string why = pose_problem(text_of(c), nullptr); !why.empty())
+        out->push_back({Severity::Error, "pose-malformed", here, why, 0});
+    } else if (tag == "geometry") {
+      if (!c->FirstChildElement()) out->push_back({Severity::Error, "geometry-empty", here, "<geometry> holds no shape", 0});
+      for (const tinyxml2::XMLElement* g = c->FirstChildElement(); g; g = g->NextSiblingElement()) {
+        const std::string shape = g->Name();
+        if (!listed(sdf_geometry_elements(), shape)) {
+          std::string known;
+          for (const auto& n : sdf_geometry_elements()) known += (known.empty() ? "" : ", ") + n;
+          out->push_back({Severity::Error, "geometry-unknown", here + "/" + shape,
+                          "unknown geometry <" + shape + "> (SDF knows " + known + ")", 0});
+        } else if (shape == "mesh" && text_of(g->FirstChildElement("uri")).empty()) {
+          out->push_back({Severity::Error, "uri-missing", here + "/mesh", "<mesh> has no <uri>", 0});
+        } else if (!listed(simulated_geometry(), shape)) {
+          out->push_back({Severity::Warning, "geometry-unsimulated", here + "/" + shape,
+                          "<" + shape + "> is not simulated by car; ignored", 0});
+        }
+      }
+    } else if (tag != "state" && tag != "gui" && tag != "plugin") {
+      check_world_children(c, here, out);
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<Diagnostic> check_world_xml(const tinyxml2::XMLElement* world) {
+  std::vector<Diagnostic> out;
+  if (!world) return out;
+  const char* name = world->Attribute("name");
+  check_world_children(world, std::string("world[") + (name ? name : "None") + "]", &out);
+  return out;
 }
 
 void validate_world(WorldDescription* d) {

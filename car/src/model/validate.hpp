@@ -103,6 +103,22 @@ std::string rewrite_pixel_formats(const std::string& xml, bool* changed);
 // rewrite_pixel_formats (docs/COMPAT-sdf.md rules 18 and 20). *changed says whether anything was rewritten.
 std::string read_as_gazebo11(const std::string& xml, bool* changed);
 
+// A pose as SDF writes it (sdformat's pose.sdf), "x y z roll pitch yaw": "" when the text is blank or six finite
+// numbers (each read as a decimal, as Python's float() reads one: no hexadecimal), else the reason, in the words of
+// world_tool check and the flattener: "pose 'TEXT' is not 6 numbers (x y z roll pitch yaw)" or "pose 'TEXT' has a
+// non-finite value". values (may be null) gets the numbers: none for a blank text.
+std::string pose_problem(const std::string& text, std::vector<double>* values);
+
+// The <geometry> children SDF 1.9 knows (sdformat's geometry.sdf), in the order world_tool check lists them.
+const std::vector<std::string>& sdf_geometry_elements();
+
+// world_tool check's rules over a flattened <world> (docs/COMPAT-validation.md "world_tool check"): every <pose>
+// without a pose_problem (error "pose-malformed"); every <geometry> holding a shape (error "geometry-empty") that SDF
+// knows (error "geometry-unknown"); every <mesh> with a <uri> (error "uri-missing"); a known shape car does not
+// simulate is the warning "geometry-unsimulated". <state>, <gui> and <plugin> are not looked into. Element paths
+// start at world[NAME] (an element's [NAME] when it has a non-empty name attribute), line 0, in document order.
+std::vector<Diagnostic> check_world_xml(const tinyxml2::XMLElement* world);
+
 // A converted world: step size > 0 and finite, gravity finite, real-time factor finite and >= 0; every model's
 // poses, masses, inertias and shape sizes by the URDF's rules. Throws LoadError for errors; appends warnings to
 // d->diagnostics; degenerate collisions are warned about and removed.

@@ -373,6 +373,25 @@ py::dict world_dict(const WorldDescription& d) {
   return out;
 }
 
+// world_tool check (docs/COMPAT-validation.md "world_tool check"): one call that flattens, checks and loads.
+void bind_world_check(py::module_& m) {
+  m.def(
+      "check_world",
+      [](const std::string& path) {
+        const WorldCheck c = check_world_file(path);
+        py::dict out;
+        py::list findings;
+        for (const auto& d : c.findings) findings.append(diagnostic(d));
+        out["findings"] = findings;
+        out["world"] = c.world ? py::object(world_dict(*c.world)) : py::object(py::none());
+        return out;
+      },
+      py::arg("path"),
+      "A world file read as world_tool check reads it: flattened, held to the check's rules, then loaded. "
+      "{findings: [{severity, code, element, message, line}], world: the loaded world as load_world_file returns "
+      "it, or None when an error came first}. A bad world is findings, never an exception.");
+}
+
 }  // namespace
 
 // ---- the bindings, one function per area, called in this order by PYBIND11_MODULE ---------------------------
@@ -479,6 +498,7 @@ void bind_paths(py::module_& m) {
   m.def("resolve_uri", py::overload_cast<const std::string&, const std::string&>(&car_sim::resolve_uri),
         py::arg("uri"), py::arg("base_dir") = "", "The include rule: a path for a URI, '' when not found.");
 
+  bind_world_check(m);
   m.def("simulated_geometry", &car_sim::simulated_geometry,
         "The SDF geometry elements car simulates; the others are ignored with a warning.");
 }

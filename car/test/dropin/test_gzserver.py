@@ -1,12 +1,12 @@
-"""gzserver's command line (car.gzserver, docs/COMPAT-dropins.md): what each Gazebo 11 option becomes."""
+"""gzserver's command line (car.ros.gzserver, docs/COMPAT-dropins.md): what each Gazebo 11 option becomes."""
 import os
 import sys
 
 import pytest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.realpath(__file__)), '..', '..', 'python'))
-from car import gzserver  # noqa: E402
-from car.gzserver import UsageError, node_argv, parse  # noqa: E402
+from car.ros import gzserver  # noqa: E402
+from car.ros.gzserver import UsageError, node_argv, parse  # noqa: E402
 
 
 def test_empty_world_launch_line_as_gazebo_ros_builds_it():

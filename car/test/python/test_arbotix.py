@@ -5,7 +5,7 @@ import os
 import pytest
 import yaml
 
-from car import arbotix
+from car.ros import arbotix
 from conftest import DATA, ROOT
 
 

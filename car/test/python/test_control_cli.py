@@ -1,5 +1,5 @@
 """car's spawner / controller_manager scripts take upstream's (ros_control Noetic) arguments and service names."""
-from car.control import _services, parse_spawner_args
+from car.ros.control import _services, parse_spawner_args
 
 
 def test_spawner_arguments_as_upstream():

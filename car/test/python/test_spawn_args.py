@@ -3,7 +3,7 @@ import math
 
 import pytest
 
-from car import spawn
+from car.ros import spawn
 
 
 def test_urdf_param_and_pose():

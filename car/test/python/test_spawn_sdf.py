@@ -1,7 +1,7 @@
 """spawn_model's -sdf and -database (gazebo_ros scripts/spawn_model; docs/COMPAT-sdf.md 13)."""
 import xml.etree.ElementTree as ET
 
-from car import spawn
+from car.ros import spawn
 
 
 def test_sdf_file_goes_to_spawn_sdf_model():

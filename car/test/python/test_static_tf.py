@@ -3,7 +3,7 @@ import math
 
 import pytest
 
-from car import static_tf
+from car.ros import static_tf
 
 
 def test_yaw_pitch_roll_form_of_the_seed():

@@ -1,7 +1,7 @@
 """teleop_twist_keyboard's key bindings, without a terminal."""
 import pytest
 
-from car.teleop import Teleop
+from car.ros.teleop import Teleop
 
 
 @pytest.mark.parametrize('key, twist', [

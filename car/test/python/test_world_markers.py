@@ -5,7 +5,8 @@ import os
 import numpy as np
 import pytest
 
-from car import _core, world_markers
+from car import _core
+from car.ros import world_markers
 from conftest import ROOT
 
 

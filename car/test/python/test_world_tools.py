@@ -131,10 +131,32 @@ def test_malformed_pose():
     assert f['message'] == "pose '1 2 three 0 0 0' is not 6 numbers (x y z roll pitch yaw)"
 
 
+def test_non_finite_pose():
+    (f,) = check_of('pose_nan.world')
+    assert (f['severity'], f['code'], f['element']) == ('error', 'pose-malformed', 'world[bad]/model[post]/pose')
+    assert f['message'] == "pose 'nan 0 0.5 0 0 0' has a non-finite value"
+
+
 def test_unknown_geometry():
     (f,) = check_of('unknown_geometry.world')
     assert (f['severity'], f['element']) == ('error', 'world[bad]/model[blob]/link[l]/collision[c]/geometry/torus')
-    assert f['message'].startswith('unknown geometry <torus>')
+    # SDF 1.9's geometry.sdf, sorted
+    assert f['message'] == ('unknown geometry <torus> (SDF knows box, capsule, cylinder, ellipsoid, empty, heightmap, '
+                            'image, mesh, plane, polyline, sphere)')
+
+
+def test_empty_geometry():
+    (f,) = check_of('empty_geometry.world')
+    assert (f['severity'], f['code'], f['element']) == ('error', 'geometry-empty',
+                                                        'world[bad]/model[ghost]/link[l]/collision[c]/geometry')
+    assert f['message'] == '<geometry> holds no shape'
+
+
+def test_unsimulated_geometry_is_a_warning():
+    f = [f for f in check_of('unsimulated_geometry.world') if f['code'] == 'geometry-unsimulated']
+    assert [(x['severity'], x['element'], x['message']) for x in f] == [
+        ('warning', 'world[bad]/model[pill]/link[l]/collision[c]/geometry/capsule',
+         '<capsule> is not simulated by car; ignored')]
 
 
 def test_mesh_without_uri():
@@ -153,6 +175,18 @@ def test_inertia_against_the_shape():
     (f,) = check_of('wrong_inertia.world')
     assert (f['severity'], f['element']) == ('warning', 'world[bad]/model[cube]/link[body]/inertial/inertia')
     assert [round(f['expected'][i][i], 6) for i in range(3)] == [0.166667] * 3
+
+
+def test_check_reads_the_world_in_one_core_call(monkeypatch):
+    # the flattener, the rules and the loader are the core's, behind car._core.check_world; Python parses nothing
+    calls = []
+    real = _core.check_world
+    monkeypatch.setattr(_core, 'check_world', lambda path: calls.append(path) or real(path))
+    for name in ('flatten_world', 'load_world_string', 'load_world_file'):
+        monkeypatch.setattr(_core, name, lambda *a, **k: pytest.fail('check parsed the world again'))
+    path = os.path.join(ROOT, 'worlds', 'box_house.world')
+    world_tools.check(path)
+    assert calls == [path]
 
 
 def test_box_house_is_clean():

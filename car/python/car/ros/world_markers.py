@@ -125,7 +125,7 @@ def main(argv=None) -> int:
                   frame, ', following moving models while someone subscribes' if follow else '')
     # the markers carry no stamp (rviz draws them at the latest transform) and the loop below keeps wall time, as
     # rviz draws: no sim time to read
-    from car.rosclock import stop_clock
+    from car.ros.rosclock import stop_clock
     stop_clock()
     if follow:
         # every model may move: a static one too, by set_model_state (docs/COMPAT.md)

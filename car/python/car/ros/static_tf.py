@@ -71,7 +71,7 @@ def main(argv=None) -> int:
     broadcaster.sendTransform(t)
     rospy.loginfo('static_transform_publisher: %s -> %s at (%g %g %g), q (%g %g %g %g)', frame, child, *xyz, *q)
     # the latched message never changes: no more time to read
-    from car.rosclock import stop_clock
+    from car.ros.rosclock import stop_clock
     stop_clock()
     rospy.spin()
     return 0
