@@ -54,8 +54,8 @@ record_run() {  # record_run TARGET START WALL CPU INPUTS LOG CORPUS FINDINGS NO
   last=$(grep -E '^#[0-9]+.*cov: [0-9]+ ft: [0-9]+' "$6" | tail -n 1)
   cov=$(echo "$last" | sed -nE 's/.*cov: ([0-9]+).*/\1/p'); ft=$(echo "$last" | sed -nE 's/.* ft: ([0-9]+).*/\1/p')
   files=$(find "$7" -maxdepth 1 -type f | wc -l)
-  # the commit fuzzed, marked -dirty when car/ differs from it (the build is of the work tree)
-  commit=$(git -C "$ROOT" rev-parse --short=12 HEAD)
+  # the commit fuzzed (HEAD when the run began), marked -dirty when car/ differs from it (the build is of the work tree)
+  commit="${commit0:-$(git -C "$ROOT" rev-parse --short=12 HEAD)}"
   [ -z "$(git -C "$ROOT" status --porcelain -- car/src car/include car/test/fuzz/*.cpp car/test/fuzz/*.hpp)" ] || commit+="-dirty"
   mkdir -p "$(dirname "$RUNS")"
   [ -s "$RUNS" ] || printf "$RUNS_HEADER\n" > "$RUNS"
@@ -157,7 +157,9 @@ watchdog() {
   while kill -0 "$parent" 2>/dev/null; do
     now=$(date +%s)
     for pid in $(pgrep -f "^$BIN/fuzz_$t( |$)"); do
+      # never the parent (it sleeps while its child works): by pid, and by its -fork flag, which children lack
       [ "$pid" != "$parent" ] || continue
+      tr '\0' ' ' < "/proc/$pid/cmdline" 2>/dev/null | grep -q -- ' -fork=' && continue
       read -r st cpu < <(awk '{print $3, $14 + $15}' "/proc/$pid/stat" 2>/dev/null) || continue
       if [ "$st" != S ] || [ "${last[$pid]:-}" != "$cpu" ]; then last[$pid]=$cpu since[$pid]=$now; continue; fi
       if [ $((now - since[$pid])) -ge "$stall" ]; then
@@ -197,14 +199,21 @@ for t in "${targets[@]}"; do
     continue
   fi
   TIMEFORMAT='%U %S'
-  start=$(date -u +%Y-%m-%dT%H:%M:%SZ) wall0=$(date +%s)
+  start=$(date -u +%Y-%m-%dT%H:%M:%SZ) wall0=$(date +%s) commit0=$(git -C "$ROOT" rev-parse --short=12 HEAD)
   # user + sys of libFuzzer's parent and every -fork child it waited for [CPU s]
-  cpu=$( { time LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=1 \
+  # (the fuzzer is started as a simple command in the background, so $! is libFuzzer's parent itself, which the
+  # watchdog leaves alone; `time` is around the group and prints its line last)
+  cpu=$( { time {
+      LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=1 \
       UBSAN_OPTIONS=print_stacktrace=1 nice -n "$NICE" "$BIN/fuzz_$t" -timeout="$TIMEOUT" -rss_limit_mb=2048 -max_len=65536 \
       -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
       -max_total_time="$secs" -artifact_prefix="$out/" "${dict[@]}" "$corpus" "$seed" \
       > "$log" 2>&1 &
-      fuzzer=$!; watchdog "$fuzzer" "$t" & wd=$!; wait "$fuzzer"; kill "$wd" 2>/dev/null; wait "$wd" 2>/dev/null; } 2>&1 )
+      fuzzer=$!
+      watchdog "$fuzzer" "$t" > /dev/null 2>&1 &
+      wd=$!
+      wait "$fuzzer"; kill "$wd"; wait "$wd"
+    } > /dev/null 2>&1; } 2>&1 | tail -n 1 )
   cpu=$(echo "$cpu" | awk '{printf "%.0f", $1 + $2}')
   wall=$(( $(date +%s) - wall0 ))
   execs=$(grep -oE '^#[0-9]+' "$log" | tail -n 1 | tr -d '#')
