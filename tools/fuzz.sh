@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Fuzzes car's loaders with libFuzzer (issue 28, docs/RELIABILITY.md): builds test/fuzz/fuzz_*.cpp with clang in
 # .ws-asan/ (tools/sanitize.sh's ASan+UBSan build; -DCAR_FUZZ=ON adds libFuzzer's coverage hooks), seeds each target from test/data/ and
-# runs them one after the other on one core (nice 10).
+# runs them one after the other on one core (nice 10; FUZZ_NICE=19 to take only idle CPU).
+# Each fuzzing run appends its summary (target, commit, CPU s, inputs, cov/ft, corpus, findings) to
+# test/fuzz/runs.tsv (committed; FUZZ_RUNS=FILE elsewhere; --smoke writes test/fuzz/out/runs.tsv, git-ignored).
 # Usage: tools/fuzz.sh [--smoke] [--cov] [SECONDS] [TARGET...]
 #   --smoke    60 s per target (CI's smoke); SECONDS per target otherwise (default 600)
 #   --no-build run what .ws-asan/ holds
@@ -42,6 +44,25 @@ JOBS="${JOBS:-1}"
 # [s] wall time per input before libFuzzer calls it a hang: the rule's 1 s; FUZZ_TIMEOUT=3 on a machine so busy
 # that a process gets a third of a core (each timeout is re-measured in CPU time below either way)
 TIMEOUT="${FUZZ_TIMEOUT:-1}"
+NICE="${FUZZ_NICE:-10}"
+# the table of runs: one row per target and run (test/fuzz/RUNS.md explains the columns)
+if [ "$secs" -eq 60 ] && [ -z "${FUZZ_RUNS:-}" ]; then RUNS="$ROOT/car/test/fuzz/out/runs.tsv"; else RUNS="${FUZZ_RUNS:-$ROOT/car/test/fuzz/runs.tsv}"; fi
+RUNS_HEADER="start_utc\ttarget\tcommit\tnice\twall_s\tcpu_s\tinputs\tcov\tft\tcorpus_files\tfindings\tnote"
+record_run() {  # record_run TARGET START WALL CPU INPUTS LOG CORPUS FINDINGS NOTE
+  local last cov ft files commit
+  # libFuzzer's last status line: `#N: cov: C ft: F corp: K ...` (-fork) or `#N ... cov: C ft: F corp: K/...`
+  last=$(grep -E '^#[0-9]+.*cov: [0-9]+ ft: [0-9]+' "$6" | tail -n 1)
+  cov=$(echo "$last" | sed -nE 's/.*cov: ([0-9]+).*/\1/p'); ft=$(echo "$last" | sed -nE 's/.* ft: ([0-9]+).*/\1/p')
+  files=$(find "$7" -maxdepth 1 -type f | wc -l)
+  # the commit fuzzed (HEAD when the run began), marked -dirty when car/ differs from it (the build is of the work tree)
+  commit="${commit0:-$(git -C "$ROOT" rev-parse --short=12 HEAD)}"
+  [ -z "$(git -C "$ROOT" status --porcelain -- car/src car/include car/test/fuzz/*.cpp car/test/fuzz/*.hpp)" ] || commit+="-dirty"
+  mkdir -p "$(dirname "$RUNS")"
+  [ -s "$RUNS" ] || printf "$RUNS_HEADER\n" > "$RUNS"
+  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$2" "$1" "$commit" "$NICE" "$3" "$4" "${5:-0}" \
+    "${cov:--}" "${ft:--}" "$files" "$8" "$9" >> "$RUNS"
+  echo "fuzz: $1: row added to $RUNS"
+}
 
 # ---- build ---------------------------------------------------------------------------------------------------
 make_workspace "$WS"
@@ -122,6 +143,34 @@ recheck() {  # recheck TARGET
   done
 }
 
+# A -fork child can hang for good on a busy machine: when an input runs past the wall-clock -timeout, libFuzzer's
+# SIGALRM handler writes the unit with malloc, and if the alarm came while the input was inside ASan's allocator the
+# child waits on the allocator's own lock (seen 2026-11-28: gdb showed AlarmCallback -> fwrite -> asan_malloc ->
+# FutexWait under PopulateFreeArray; the child sat asleep at 0 CPU s for 15 minutes and the run with it, leaving an
+# empty timeout- file). watchdog FUZZER TARGET: every 10 s, a child of the target asleep (state S) whose CPU time has
+# not moved for FUZZ_STALL wall seconds (default 120; a child runs inputs without sleeping) is killed; libFuzzer's
+# parent takes that as a crash of the child and goes on (-ignore_crashes=1). Each kill is a line in WS/watchdog-TARGET.log.
+watchdog() {
+  local parent="$1" t="$2" stall="${FUZZ_STALL:-120}" pid st cpu now
+  declare -A last since
+  : > "$WS/watchdog-$t.log"
+  while kill -0 "$parent" 2>/dev/null; do
+    now=$(date +%s)
+    for pid in $(pgrep -f "^$BIN/fuzz_$t( |$)"); do
+      # never the parent (it sleeps while its child works): by pid, and by its -fork flag, which children lack
+      [ "$pid" != "$parent" ] || continue
+      tr '\0' ' ' < "/proc/$pid/cmdline" 2>/dev/null | grep -q -- ' -fork=' && continue
+      read -r st cpu < <(awk '{print $3, $14 + $15}' "/proc/$pid/stat" 2>/dev/null) || continue
+      if [ "$st" != S ] || [ "${last[$pid]:-}" != "$cpu" ]; then last[$pid]=$cpu since[$pid]=$now; continue; fi
+      if [ $((now - since[$pid])) -ge "$stall" ]; then
+        kill -KILL "$pid" 2>/dev/null &&
+          echo "$(date -u +%H:%M:%S) killed child $pid of fuzz_$t: asleep at $cpu CPU ticks for $((now - since[$pid])) s" >> "$WS/watchdog-$t.log"
+      fi
+    done
+    sleep 10
+  done
+}
+
 # ---- fuzz, one target at a time on one core --------------------------------------------------------------------
 broken=0 idle=0
 summary=""
@@ -150,24 +199,40 @@ for t in "${targets[@]}"; do
     continue
   fi
   TIMEFORMAT='%U %S'
-  cpu=$( { time LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=1 \
-      UBSAN_OPTIONS=print_stacktrace=1 nice -n 10 "$BIN/fuzz_$t" -timeout="$TIMEOUT" -rss_limit_mb=2048 -max_len=65536 \
+  start=$(date -u +%Y-%m-%dT%H:%M:%SZ) wall0=$(date +%s) commit0=$(git -C "$ROOT" rev-parse --short=12 HEAD)
+  # user + sys of libFuzzer's parent and every -fork child it waited for [CPU s]
+  # (the fuzzer is started as a simple command in the background, so $! is libFuzzer's parent itself, which the
+  # watchdog leaves alone; `time` is around the group and prints its line last)
+  cpu=$( { time {
+      LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=1 \
+      UBSAN_OPTIONS=print_stacktrace=1 nice -n "$NICE" "$BIN/fuzz_$t" -timeout="$TIMEOUT" -rss_limit_mb=2048 -max_len=65536 \
       -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
       -max_total_time="$secs" -artifact_prefix="$out/" "${dict[@]}" "$corpus" "$seed" \
-      > "$log" 2>&1; } 2>&1 )
+      > "$log" 2>&1 &
+      fuzzer=$!
+      watchdog "$fuzzer" "$t" > /dev/null 2>&1 &
+      wd=$!
+      wait "$fuzzer"; kill "$wd"; wait "$wd"
+    } > /dev/null 2>&1; } 2>&1 | tail -n 1 )
   cpu=$(echo "$cpu" | awk '{printf "%.0f", $1 + $2}')
+  wall=$(( $(date +%s) - wall0 ))
   execs=$(grep -oE '^#[0-9]+' "$log" | tail -n 1 | tr -d '#')
   # libFuzzer's count of executed inputs: none (a binary that would not start, no input run) is a failure, and
   # the CPU seconds it spent are not fuzzing
   if [ "${execs:-0}" -eq 0 ]; then
     idle=1; summary+="$t executed nothing (${cpu} CPU s not counted); "
     echo "fuzz: $t: FAILED: executed nothing (0 inputs; ${cpu} CPU s not counted): $(tail -n 3 "$log" | tr '\n' ' ')"
+    record_run "$t" "$start" "$wall" 0 0 "$log" "$corpus" - "executed nothing: ${cpu} CPU s not counted"
     continue
   fi
   recheck "$t"
   found=$(find "$out" -maxdepth 1 -type f \( -name 'crash-*' -o -name 'timeout-*' -o -name 'oom-*' -o -name 'leak-*' \) | wc -l)
   [ "$found" -eq 0 ] || { broken=1; grep -m3 -A12 'ERROR\|RULE BROKEN\|ALARM' "$log"; }
   echo "fuzz: $t: ${cpu} CPU s, ${execs:-?} inputs, $found finding(s) in $out"
+  note="timeout ${TIMEOUT} s"
+  stuck=$(grep -c killed "$WS/watchdog-$t.log" 2>/dev/null); [ "${stuck:-0}" -eq 0 ] || note+="; ${stuck} hung child(ren) killed by the watchdog"
+  [ -d "$out/load" ] && note+="; $(find "$out/load" -type f | wc -l) wall-clock timeout(s) re-measured as load"
+  record_run "$t" "$start" "$wall" "$cpu" "$execs" "$log" "$corpus" "$found" "$note"
   summary+="$t ${cpu} CPU s ${found} findings; "
 done
 
@@ -175,7 +240,7 @@ done
 if [ $save -eq 1 ]; then
   for t in "${targets[@]}"; do
     rm -rf "test/fuzz/corpus/$t"; mkdir -p "test/fuzz/corpus/$t"
-    LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS=detect_leaks=0 CAR_FUZZ_NO_STEP=1 nice -n 10 "$BIN/fuzz_$t" -merge=1 \
+    LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS=detect_leaks=0 CAR_FUZZ_NO_STEP=1 nice -n "$NICE" "$BIN/fuzz_$t" -merge=1 \
       -timeout=30 "test/fuzz/corpus/$t" "$WS/corpus/$t" > "$WS/merge-$t.log" 2>&1
     echo "fuzz: $t: corpus $(ls "test/fuzz/corpus/$t" | wc -l) files, $(du -sh "test/fuzz/corpus/$t" | cut -f1)"
   done

@@ -4,6 +4,10 @@
 #   2. build:     `catkin_make` there; every package is found (car, compat/'s drop-ins)
 #   3. commands:  roslaunch car sim.launch, roslaunch gazebo_ros empty_world.launch, rosrun car xacro,
 #                 rosrun xacro xacro and roslaunch car empty_world.launch each run with no prompt and no error
+#   3b. a user's package: a fresh workspace overlaying this one, with fixtures/user_ws/my_gazebo_plugin (its own
+#                 Gazebo model plug-in, a CMakeLists as Gazebo users write it): catkin_make there, then its rostest
+#                 (gazebo_ros' empty_world.launch, the plug-in's model spawned): it moves the model at the SDF's speed
+#                 and sets ROS parameters through roscpp from car's node (docs/PLUGINS.md "Tested", issue 49)
 #   4. isolated:  `catkin_make_isolated` builds the same packages (--no-isolated leaves it out)
 #   5. install:   `catkin_make install -DCMAKE_INSTALL_PREFIX=T/opt/car`, then, in a mount namespace where this
 #                 repository (its devel space and venv), WS/src, WS/build and WS/devel are empty folders, the five
@@ -11,12 +15,13 @@
 #                 share/car/test) against the install space alone
 # Each check is one JUnit test case in --junit FILE (tools/test_slow.sh, run by .ci/run, counts and floors them).
 # Usage: tools/test_workspace.sh [--junit FILE] [--keep] [--no-isolated] [--tests "a.test b.test"]
+#        tools/test_workspace.sh --user-package-only [--junit FILE] [--keep]   (step 3b alone, over .ws/devel)
 # A check of step 5 that never ran (the namespace run died partway) is recorded as a failure
 # (CAR_WS_DIE_AFTER=N kills that run after N rostests, to see it).
 # Needs root or user namespaces (unshare) for step 5, Debian's ROS packages and the venv (tools/setup.sh).
 set -uo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-JUNIT="" KEEP=0 ISOLATED=1 TESTS="" INNER=""
+JUNIT="" KEEP=0 ISOLATED=1 TESTS="" INNER="" USER_ONLY=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --junit) JUNIT="$(realpath -m "$2")"; shift ;;
@@ -24,6 +29,7 @@ while [ $# -gt 0 ]; do
     --keep) KEEP=1 ;;
     --no-isolated) ISOLATED=0 ;;
     --tests) TESTS="$2"; shift ;;
+    --user-package-only) USER_ONLY=1 ;;
     *) echo "test_workspace: unknown option $1" >&2; exit 2 ;;
   esac
   shift
@@ -115,6 +121,34 @@ five_commands() {  # five_commands SPACE SETUP
   launch_runs "$1_roslaunch_car_empty_world" "$2" car empty_world.launch
 }
 
+# ---- 3b. a user's package in a workspace of its own, overlaying car's ---------------------------------------------
+# user_package UNDERLAY_SETUP: T/user_ws/src holds fixtures/user_ws/my_gazebo_plugin; catkin_make with the underlay
+# sourced, as a user does, then `rostest my_gazebo_plugin push.test` with the overlay sourced
+user_package() {
+  local underlay="$1" uw="$T/user_ws" t0=$SECONDS rc log
+  mkdir -p "$uw/src"
+  cp -a "$ROOT/fixtures/user_ws/my_gazebo_plugin" "$uw/src/"
+  log="$LOGS/user_catkin_make.log"
+  ( set +u; source "$underlay"; set -u
+    cd "$uw" && catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -j2 ) < /dev/null > "$log" 2>&1
+  rc=$?
+  [ $rc != 0 ] || [ -f "$uw/devel/lib/libmy_push.so" ] || { rc=1; echo "test_workspace: no devel/lib/libmy_push.so" >> "$log"; }
+  record "user_package_catkin_make_builds_its_gazebo_plugin" $rc $t0 "catkin_make of my_gazebo_plugin over $underlay failed: $(grep -m 5 -E 'rror|Could not' "$log") $(tail -n 8 "$log")"
+  [ $rc = 0 ] || return 0
+  t0=$SECONDS
+  log="$LOGS/user_rostest_push.log"
+  ( set +u; source "$uw/devel/setup.bash"; set -u
+    export ROS_HOME="$T/ros_home"
+    timeout 600 rostest --text my_gazebo_plugin push.test ) < /dev/null > "$log" 2>&1
+  rc=$?
+  grep -q 'RESULT: SUCCESS' "$log" || rc=1
+  record "user_package_plugin_acts_in_empty_world_launch" $rc $t0 "rostest my_gazebo_plugin push.test: $(grep -E 'FAIL|ERROR|Error|AssertionError|not within' "$log" | head -n 8)"
+}
+if [ $USER_ONLY = 1 ]; then
+  user_package "$ROOT/.ws/devel/setup.bash"
+  finish
+fi
+
 if [ -z "$INNER" ]; then
 # ---- 1. the repository as a clone gives it ---------------------------------------------------------------------
 t0=$SECONDS
@@ -149,6 +183,7 @@ record "catkin_make_builds_every_package" $rc $t0 "catkin_make failed: $(tail -n
 [ $rc = 0 ] || finish
 
 five_commands devel "$WS/devel/setup.bash"
+user_package "$WS/devel/setup.bash"
 
 # ---- 4. catkin_make_isolated ------------------------------------------------------------------------------------
 if [ $ISOLATED = 1 ]; then

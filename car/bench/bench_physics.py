@@ -61,16 +61,21 @@ def interleaved(measurements, repeat, log=None):
     return samples
 
 
-def summary(samples):
-    """(best, median) of a figure's samples: the largest (every figure here is a rate: more is better, and load
-    only lowers it) and the median."""
-    return max(samples), statistics.median(samples)
+def summary(samples, cost=False):
+    """(best, median) of a figure's samples: the largest for a rate (more is better, and load only lowers it), the
+    smallest for a cost (cost=True: µs, %), and the median."""
+    return (min(samples) if cost else max(samples)), statistics.median(samples)
+
+
+def is_cost(key):
+    """A figure where less is better: a time [us] or an overhead [%]."""
+    return key.endswith(('_us', '_pct'))
 
 
 def record(fig, samples):
     """Writes each key's best under its stable name, and KEY.median and KEY.samples beside it."""
     for key, values in samples.items():
-        fig[key], fig[key + '.median'] = summary(values)
+        fig[key], fig[key + '.median'] = summary(values, is_cost(key))
         fig[key + '.samples'] = list(values)
 
 
@@ -258,6 +263,30 @@ def core_many(seconds=3.0):
     return best, tried
 
 
+def gazebo_plugins(rounds=9, steps=2000):
+    """bench_gazebo: the seed car's step cost [us of the stepping thread's CPU] with 0, 1 and 10 model plug-ins
+    whose WorldUpdateBegin callback is empty (bench/plugins/empty_update.cc), medians of its own interleaved rounds;
+    one callback's cost [us] and ten plug-ins' overhead [% of the step with none]."""
+    exe = os.path.join(PROGRAMS, 'bench_gazebo')
+    plugins = os.path.join(PROGRAMS, 'bench_plugins')
+    out = subprocess.run([exe, URDF, WORLD, plugins, str(rounds), str(steps)], capture_output=True, text=True,
+                         check=True).stdout
+    return parse_gazebo(out)
+
+
+def parse_gazebo(out):
+    """{key: value} from bench_gazebo's lines 'gazebo: step cost, ...: 0 plug-ins A us, 1 B us, 10 C us' and
+    'gazebo: one empty WorldUpdateBegin callback D us per step (...); ten plug-ins E % of ...'."""
+    import re
+    m = re.search(r'0 plug-ins ([0-9.]+) us, 1 ([0-9.]+) us, 10 ([0-9.]+) us', out)
+    c = re.search(r'callback (-?[0-9.]+) us per step .*ten plug-ins ([-+0-9.]+) %', out)
+    if not m or not c:
+        raise RuntimeError('bench_gazebo printed no figures: %r' % out)
+    return {'gazebo.step_0_plugins_us': float(m.group(1)), 'gazebo.step_1_plugin_us': float(m.group(2)),
+            'gazebo.step_10_plugins_us': float(m.group(3)), 'gazebo.callback_us': float(c.group(1)),
+            'gazebo.ten_plugins_overhead_pct': float(c.group(2))}
+
+
 def stat_fields(path):
     """The fields of a /proc stat file after the command name (state, ppid, ...), or None when it is gone."""
     try:
@@ -405,6 +434,7 @@ def measurements(a):
         ('PyBullet 10 it.', lambda: pair('physics.pybullet_10it', pybullet_steps(a.steps, iterations=10))),
         ('car ROS node', lambda: pair('physics.car_ros_node', ros_node_subprocess(a.seconds, 'plain'))),
         ('car ROS node alone', lambda: pair('physics.car_ros_node_alone', ros_node_subprocess(a.seconds, 'alone'))),
+        ('car Gazebo plug-ins', gazebo_plugins),
     ]
     if a.sensors:
         def sensors(threads):
@@ -578,6 +608,15 @@ def main():
         print('%-44s %9.2f' % ('ROS node alone / core per CPU second (best)', fig['ratio.ros_node_alone_vs_core.cpu']))
     print('%-44s %9.2f %9.2f' % ('core Python / C++ (best, median)', fig['ratio.car_core_python_vs_cpp'],
                                  fig['physics.car_core_python.median'] / fig['physics.car_core_cpp.median']))
+    print()
+    print('users\' Gazebo plug-ins: the seed car with 0, 1, 10 empty WorldUpdateBegin callbacks (bench_gazebo; '
+          'each sample the median of its own interleaved rounds; best and median of the samples)')
+    for name, key, unit in (('step, no plug-in', 'gazebo.step_0_plugins_us', 'us'),
+                            ('step, 1 plug-in', 'gazebo.step_1_plugin_us', 'us'),
+                            ('step, 10 plug-ins', 'gazebo.step_10_plugins_us', 'us'),
+                            ('one empty callback (issue 49: <= 1 us)', 'gazebo.callback_us', 'us'),
+                            ('10 plug-ins, % of the step (issue 49: <= 10 %)', 'gazebo.ten_plugins_overhead_pct', '%')):
+        print('%-48s %10.3f %-2s (median %.3f)' % (name, fig[key], unit, fig[key + '.median']))
     if a.sensors:
         f = fig
         pb1, pb0, pbc = (f['lidar.pybullet_1thread_rays_per_s'], f['lidar.pybullet_all_rays_per_s'],

@@ -16,6 +16,17 @@ install(TARGETS car_gazebo
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
 install(DIRECTORY include/gazebo_api/ DESTINATION ${CATKIN_GLOBAL_INCLUDE_DESTINATION}/gazebo_api)
 
+# ---- bench (bench/run.sh): the step cost of 0, 1 and 10 model plug-ins with an empty WorldUpdateBegin callback on
+# the seed car; the plug-in's folder goes to bench_physics.py through the devel space (lib/car/bench_plugins)
+set(_car_bench_plugins ${CATKIN_DEVEL_PREFIX}/lib/car/bench_plugins)
+add_library(car_bench_empty_update MODULE bench/plugins/empty_update.cc)
+target_link_libraries(car_bench_empty_update car_gazebo)
+set_target_properties(car_bench_empty_update PROPERTIES OUTPUT_NAME car_bench_empty_update PREFIX "lib"
+  LIBRARY_OUTPUT_DIRECTORY ${_car_bench_plugins})
+add_executable(bench_gazebo bench/bench_gazebo.cpp)
+target_link_libraries(bench_gazebo car_gazebo)
+add_dependencies(bench_gazebo car_bench_empty_update)
+
 # ---- tests: model plug-ins in the style of Gazebo's tutorials, built as .so files and loaded by the world's plug-in
 # table in test_core (test/gazebo/); their folder goes to the tests as CAR_GAZEBO_TEST_PLUGINS.
 if(CATKIN_ENABLE_TESTING AND TARGET test_core)
