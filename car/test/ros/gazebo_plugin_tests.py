@@ -31,6 +31,8 @@ class GazeboPlugin(unittest.TestCase):
         wait_for('0.5 s of sim time', lambda: sim_now() > t0 + 0.5)
         s = call('/gazebo/get_model_state', GetModelState, 'push_box', '')
         self.assertTrue(s.success, s.status_message)
+        # still in the air, so no friction has touched its speed (it lands after 510 s of sim time)
+        self.assertGreater(s.pose.position.z, 1.0, 'the box landed before it was read')
         self.assertAlmostEqual(s.twist.linear.x, 0.3, delta=1e-9)
         self.assertAlmostEqual(s.twist.linear.y, 0.0, delta=1e-9)
         self.assertAlmostEqual(s.twist.linear.z, -9.8 * 0.001, delta=1e-9)
