@@ -2,8 +2,9 @@
 """Records every message of the given topics with stamp <= T sim seconds, after the scenario's scripted start, and
 prints per-topic count and sha256 of the serialized messages in arrival order (for before/after byte identity).
 Each wait is on an event or on sim time; one that runs past its limit exits 1 and names what it waited for."""
-import hashlib, struct, sys, time
+import hashlib, io, struct, sys, time
 import rospy, actionlib
+from control_msgs.msg import FollowJointTrajectoryActionResult
 from controller_manager_msgs.srv import ListControllers
 from geometry_msgs.msg import Twist
 from std_srvs.srv import Empty
@@ -43,7 +44,10 @@ def stamp_of(t, raw):
 
 def cb_for(t):
     def cb(m):
-        raw = bytes(m._buff)  # the message as sent, not deserialised: a point cloud's 10 MB would hold the reader back
+        if isinstance(m, rospy.AnyMsg):
+            raw = bytes(m._buff)  # as sent, not deserialised: a point cloud's 10 MB would hold the reader back
+        else:
+            b = io.BytesIO(); m.serialize(b); raw = b.getvalue()
         st = stamp_of(t, raw)
         if st is not None and st > T:
             past[t] = True
@@ -56,7 +60,9 @@ def cb_for(t):
 once = {t for t in topics if t.endswith('/result')}
 subs = []
 for t in topics:
-    subs.append(rospy.Subscriber(t, rospy.AnyMsg, cb_for(t), queue_size=1000000, tcp_nodelay=True, buff_size=2**26))
+    # the action's result typed: actionlib's client in this node shares the subscription and needs the message
+    cls = FollowJointTrajectoryActionResult if t in once else rospy.AnyMsg
+    subs.append(rospy.Subscriber(t, cls, cb_for(t), queue_size=1000000, tcp_nodelay=True, buff_size=2**26))
 
 
 def wait_running(srv, names):

@@ -95,6 +95,17 @@ py::dict diagnostic(const Diagnostic& x) {
   return d;
 }
 
+// A LoadError as an error finding of car check: {severity, code, element, message, line}.
+py::dict error_finding(const char* code, const LoadError& e) {
+  py::dict err;
+  err["severity"] = "error";
+  err["code"] = code;
+  err["element"] = e.element();
+  err["message"] = e.reason();
+  err["line"] = e.line();
+  return err;
+}
+
 py::dict model_dict(const RobotModel& m) {
   py::dict d;
   d["name"] = m.name;
@@ -434,13 +445,7 @@ void bind_urdf(py::module_& m) {
           out["config_error"] = py::none();
         } catch (const LoadError& e) {
           out["config"] = py::none();
-          py::dict err;
-          err["severity"] = "error";
-          err["code"] = "plugin-config";
-          err["element"] = e.element();
-          err["message"] = e.reason();
-          err["line"] = e.line();
-          out["config_error"] = err;
+          out["config_error"] = error_finding("plugin-config", e);
         }
         // A collision mesh that cannot be found or read is the spawn's load error: an error finding here; a
         // visual's is the spawn's warning (mesh_warnings).
@@ -453,13 +458,7 @@ void bind_urdf(py::module_& m) {
           for (size_t i = model.diagnostics.size(); i < with_meshes.diagnostics.size(); ++i)
             mesh_warnings.append(diagnostic(with_meshes.diagnostics[i]));
         } catch (const LoadError& e) {
-          py::dict err;
-          err["severity"] = "error";
-          err["code"] = "mesh-load";
-          err["element"] = e.element();
-          err["message"] = e.reason();
-          err["line"] = e.line();
-          out["mesh_error"] = err;
+          out["mesh_error"] = error_finding("mesh-load", e);
         }
         out["mesh_warnings"] = mesh_warnings;
         return out;
