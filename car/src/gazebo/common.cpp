@@ -5,6 +5,7 @@
 
 #include "gazebo/common/Event.hh"
 #include "gazebo/common/PID.hh"
+#include "gazebo/common/Plugin.hh"
 #include "gazebo/common/Time.hh"
 
 namespace gazebo {
@@ -158,4 +159,11 @@ Connection::~Connection() {
 int Connection::Id() const { return id; }
 
 }  // namespace event
+}  // namespace gazebo
+
+namespace gazebo {
+
+// out of line, so that a plug-in library needs car_gazebo (Plugin.hh)
+PluginBase::~PluginBase() = default;
+
 }  // namespace gazebo

@@ -1,6 +1,8 @@
 // sim_node: car's simulator as a ROS node, named gazebo by default so its services live under /gazebo.
 #include <malloc.h>
 
+#include <cstdio>
+
 #include "master_watch.hpp"
 #include "node.hpp"
 
@@ -9,6 +11,9 @@ int main(int argc, char** argv) {
   // so the next frame does not pay page faults (glibc otherwise mmaps blocks over 128 kB).
   mallopt(M_MMAP_THRESHOLD, 256 << 20);
   mallopt(M_TRIM_THRESHOLD, 512 << 20);
+  // line by line, to a log file too: users' Gazebo plug-ins print with printf and std::cout (the hello world
+  // tutorial), and a node stopped by roslaunch would lose a full buffer
+  setvbuf(stdout, nullptr, _IOLBF, 0);
   ros::init(argc, argv, "gazebo");
   car_ros::SimNode node;
   if (!node.init()) return 1;

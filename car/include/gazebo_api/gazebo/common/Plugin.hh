@@ -20,10 +20,12 @@ namespace gazebo {
 
 enum PluginType { WORLD_PLUGIN, MODEL_PLUGIN, SENSOR_PLUGIN, SYSTEM_PLUGIN, VISUAL_PLUGIN, GUI_PLUGIN };
 
-// car: what every plug-in class shares, so that the loader can tell which class a library's RegisterPlugin made.
+// car: what every plug-in class shares, so that the loader can tell which class a library's RegisterPlugin made. Its
+// destructor is car_gazebo's (not inline): every plug-in library then needs libcar_gazebo.so, even one that calls
+// nothing of it (the hello world tutorial) and is linked --as-needed, so the API is there when the plug-in loads.
 class PluginBase {
  public:
-  virtual ~PluginBase() = default;
+  virtual ~PluginBase();
   // car: set by the loader before Load.
   std::string filename;
   std::string handleName;
