@@ -1,6 +1,7 @@
 // car's Gazebo 11 API (docs/PLUGINS.md): the common headers car offers.
 #pragma once
 
+#include "gazebo/gazebo_config.h"
 #include "gazebo/common/Console.hh"
 #include "gazebo/common/Event.hh"
 #include "gazebo/common/Events.hh"
