@@ -13,12 +13,13 @@
 #                                  kobuki_gazebo, kobuki_gazebo_plugins
 #   yujinrobot+kobuki (melodic)    kobuki_description
 #   yujinrobot+kobuki_msgs (noetic)  kobuki_msgs
-# Needs car's workspace built and sourced (source .ws/devel/setup.bash). The scratch workspace goes to /tmp.
+# Needs car's workspace built and sourced (source .ws/devel/setup.bash), and Debian's liburdf-dev (kobuki_description
+# finds the catkin package urdf). The scratch workspace goes to /tmp.
 # robot.launch.xml's nodelet manager is not provided (roslaunch names it and goes on): nothing of the checks uses it.
 set -u
 
 if [ $# -lt 1 ]; then
-  sed -n '2,18p' "$0"
+  sed -n '2,19p' "$0"
   exit 2
 fi
 MIRROR=$(realpath "$1")

@@ -126,6 +126,13 @@ TEST_F(GazeboSensors, ASensorPluginsSdfParentIsItsSensor) {
   EXPECT_EQ(probe("front/sdf_parent_is_my_sensor"), 1);
 }
 
+// <gazebo/gazebo.hh> gives Gazebo's version macros, 11 (what a plug-in's `#if GAZEBO_MAJOR_VERSION >= 9` reads).
+TEST_F(GazeboSensors, APluginSeesGazebosMajorVersion11) {
+  World w(wall_world());
+  w.spawn(load_urdf_string(box(ray_sensor()), "box"), "box", at(0, 0, 0.5));
+  EXPECT_EQ(probe("front/gazebo_major"), 11);
+}
+
 // The <ray> as written: 3 samples over [-0.1, 0.1]: a resolution of 0.2 / 2 = 0.1 rad; range max 10 m.
 TEST_F(GazeboSensors, RaySensorGivesItsScanAsWritten) {
   World w(wall_world());
@@ -205,6 +212,30 @@ TEST_F(GazeboSensors, ContactSensorReportsABoxRestingOnTheGround) {
   EXPECT_LT(probe("bump/depth_max"), 0.005);
   EXPECT_NEAR(probe("bump/force_z"), 2 * 9.8, 0.02 * 2 * 9.8);
   EXPECT_EQ(probe("bump/collision1_is_mine"), 1);
+}
+
+// A contact sensor naming a named collision of a link lumped into "base" by a fixed joint (Gazebo's name
+// "base_fixed_joint_lump__shell_collision", as Kobuki's bumper): it watches base's body, which rests on the ground.
+TEST_F(GazeboSensors, ContactSensorFindsANamedLumpedCollision) {
+  World w(empty_world());
+  const std::string urdf = R"(<?xml version="1.0"?>
+<robot name="box">
+  <link name="base">
+    <inertial><mass value="2"/><inertia ixx="0.02" iyy="0.02" izz="0.02" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
+  </link>
+  <link name="shell_link">
+    <inertial><mass value="0.1"/><inertia ixx="0.001" iyy="0.001" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision name="shell"><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
+  </link>
+  <joint name="shell_joint" type="fixed"><parent link="base"/><child link="shell_link"/><origin xyz="0 0 0.15"/></joint>
+  <gazebo reference="shell_link"><sensor type="contact" name="bump"><update_rate>100</update_rate>
+      <contact><collision>base_fixed_joint_lump__shell_collision</collision></contact>
+      <plugin name="probe" filename="libsensor_probe.so"/></sensor></gazebo>
+</robot>)";
+  w.spawn(load_urdf_string(urdf, "box"), "box", at(0, 0, 0.1));
+  w.step(1000);
+  EXPECT_EQ(probe("bump/contacts"), 1);
 }
 
 // At rest on the ground, car's IMU without noise: the acceleration less gravity, (0, 0, +9.8) m/s^2 in the sensor

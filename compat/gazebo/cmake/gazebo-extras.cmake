@@ -32,6 +32,15 @@ if(_gz_ign_common_inc)
 endif()
 list(REMOVE_DUPLICATES GAZEBO_INCLUDE_DIRS)
 set(GAZEBO_LIBRARIES ${car_LIBRARIES} sdformat12::sdformat12 ignition-math6::ignition-math6)
+# Gazebo 11 needs C++17. Upstream's maths and SDF targets ask for it as the compile feature cxx_std_17, which
+# CMake meets on Debian 12's g++ (C++17 by default) by adding no flag, so a package's own -std=c++11 in
+# CMAKE_CXX_FLAGS (kobuki_gazebo_plugins') would win; where the default is older (Noetic's g++ 9) CMake adds
+# -std=gnu++17 after that flag. This interface target puts -std=c++17 after it here too.
+if(NOT TARGET car_gazebo_cxx17)
+  add_library(car_gazebo_cxx17 INTERFACE IMPORTED)
+  set_target_properties(car_gazebo_cxx17 PROPERTIES INTERFACE_COMPILE_OPTIONS "$<$<COMPILE_LANGUAGE:CXX>:-std=c++17>")
+endif()
+list(APPEND GAZEBO_LIBRARIES car_gazebo_cxx17)
 set(GAZEBO_LIBRARY_DIRS ${car_LIBRARY_DIRS})
 set(GAZEBO_CXX_FLAGS "-std=c++17")
 set(GAZEBO_VERSION 11.10.2)

@@ -2,6 +2,7 @@
 // subset car offers.
 #pragma once
 
+#include "gazebo/gazebo_config.h"
 #include "gazebo/common/common.hh"
 #include "gazebo/msgs/msgs.hh"
 #include "gazebo/physics/PhysicsTypes.hh"

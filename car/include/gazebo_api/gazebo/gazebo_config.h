@@ -1,6 +1,7 @@
-// car's Gazebo 11 API (docs/PLUGINS.md): the version macros of Gazebo 11's gazebo_config.h, so that code written for
-// several Gazebo versions (`#if GAZEBO_MAJOR_VERSION >= 8`) takes Gazebo 11's branch. Gazebo's HAVE_* feature macros
-// are not defined: car has none of those optional parts.
+// car's Gazebo 11 API (docs/PLUGINS.md): the version macros of Gazebo's gazebo/gazebo_config.h, the version
+// compat/gazebo's find_package(gazebo) reports (GAZEBO_VERSION 11.10.2), so that a plug-in's
+// `#if GAZEBO_MAJOR_VERSION >= 9` takes its Gazebo 11 branch. Included by gazebo/gazebo.hh and
+// gazebo/common/common.hh.
 #pragma once
 
 #define GAZEBO_MAJOR_VERSION 11

@@ -15,7 +15,12 @@ std::string link_of_collision(const RobotModel& model, const std::string& collis
   // "LINK_collision" or "LINK_collision_N"
   const auto c = s.rfind("_collision");
   if (c != std::string::npos) s = s.substr(0, c);
-  return model.find_link(s) ? s : "";
+  if (model.find_link(s)) return s;
+  // a named <collision name="N"> of a lumped link is "PARENT_fixed_joint_lump__N_collision" (Kobuki's bumper's
+  // base_footprint_fixed_joint_lump__base_collision): car keeps no collision names, and a contact sensor watches
+  // its link's body, which is PARENT's
+  if (at != std::string::npos && model.find_link(collision.substr(0, at))) return collision.substr(0, at);
+  return "";
 }
 
 void ContactsOut::visit(FieldVisitor& v) const {

@@ -26,6 +26,7 @@ class SensorProbe : public SensorPlugin {
   void Load(sensors::SensorPtr _sensor, sdf::ElementPtr _sdf) override {
     this->sensor = _sensor;
     Put("loaded", 1);
+    Put("gazebo_major", GAZEBO_MAJOR_VERSION);
     // Gazebo's <plugin> sits in its <sensor>
     Put("sdf_parent_is_my_sensor", _sdf->GetParent() && _sdf->GetParent()->GetName() == "sensor" &&
                                        _sdf->GetParent()->Get<std::string>("name") == _sensor->Name());
