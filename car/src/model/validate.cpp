@@ -67,7 +67,15 @@ bool positive_at(const tinyxml2::XMLElement* e, const std::string& path, double*
   return true;
 }
 
-std::string whole(double v) { return std::to_string(static_cast<long long>(v)); }
+// A product of limits as a whole number, below 1e15 (exact in a double and a long long); above, with 10 significant
+// digits ("3.072e+26"), since a rate may be any finite number and the product need not fit a long long.
+std::string whole(double v) {
+  if (v < 1e15) return std::to_string(static_cast<long long>(v));
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str();
+}
 
 }  // namespace
 

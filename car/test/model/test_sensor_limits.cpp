@@ -122,6 +122,17 @@ TEST(SensorLimits, PixelsPerSecondAreCountedFromTheSensorsRate) {
             "1e9 px/s");
 }
 
+TEST(SensorLimits, AHugeRateIsRefusedWithItsProductInScientificNotation) {
+  // 640 x 480 px at 1e21 Hz: 307 200 px x 1e21 /s = 3.072e26 px/s, beyond a long long (9.2e18): written with 10
+  // significant digits (found by fuzz_urdf: the conversion to long long was undefined behaviour)
+  const std::string fast =
+      "<sensor type='camera' name='cam'><update_rate>1e21</update_rate><camera><image><width>640</width>"
+      "<height>480</height></image></camera></sensor>";
+  EXPECT_EQ(error_of([&] { load_urdf_string(urdf_with(fast), "r.urdf"); }),
+            "r.urdf:1: sensor[cam]/update_rate: width x height x update_rate = 3.072e+26 px/s is above the limit "
+            "1e9 px/s");
+}
+
 TEST(SensorLimits, ACameraWithinTheLimitsLoads) {
   const std::string ok =
       "<sensor type='camera' name='cam'><update_rate>30</update_rate><camera><image><width>2048</width>"
