@@ -265,6 +265,18 @@ gazebo::sensors::SensorPtr make_sensor(const car_sim::SharedPluginContext& ctx) 
   throw std::runtime_error("sensor type '" + t + "' is not offered by car's Gazebo sensors API");
 }
 
+// The plug-in a library's RegisterPlugin makes. Its declared return type depends on the registration macro
+// (ModelPlugin*, WorldPlugin*, SystemPlugin*, SensorPlugin*: gazebo/common/Plugin.hh), and each of those derives
+// PluginBase alone and first, so the pointer is its PluginBase's. It is called through one type, as Gazebo's
+// PluginT::Create casts the symbol to the type it expects; UBSan's function-type check is off here for that only.
+#if defined(__clang__)
+__attribute__((no_sanitize("function")))
+#endif
+gazebo::PluginBase* make_plugin(void* register_fn) {
+  using Factory = gazebo::PluginBase* (*)();
+  return reinterpret_cast<Factory>(register_fn)();
+}
+
 class Host : public car_sim::SharedPluginHost {
  public:
   std::unique_ptr<car_sim::SharedPlugin> load(void* register_fn, const car_sim::SharedPluginContext& ctx) override {
@@ -272,9 +284,7 @@ class Host : public car_sim::SharedPluginHost {
     auto run = std::make_unique<Running>();
     run->hub = Hub::of(ctx.world);
     CurrentHub in(run->hub.get());
-    // every plug-in class derives PluginBase first, so the factory's pointer is one to its PluginBase
-    using Factory = gazebo::PluginBase* (*)();
-    run->plugin.reset(reinterpret_cast<Factory>(register_fn)());
+    run->plugin.reset(make_plugin(register_fn));
     if (!run->plugin) throw std::runtime_error("RegisterPlugin returned no plug-in");
     run->plugin->filename = ctx.filename;
     run->plugin->handleName = ctx.name;
@@ -333,8 +343,7 @@ class Host : public car_sim::SharedPluginHost {
     run->sensor = make_sensor(ctx);
     gazebo::sensors::SensorManager::Instance()->CarAdd(run->sensor);
     if (!register_fn) return run;
-    using Factory = gazebo::PluginBase* (*)();
-    std::unique_ptr<gazebo::PluginBase> made(reinterpret_cast<Factory>(register_fn)());
+    std::unique_ptr<gazebo::PluginBase> made(make_plugin(register_fn));
     if (!made) throw std::runtime_error("RegisterPlugin returned no plug-in");
     auto* p = dynamic_cast<gazebo::SensorPlugin*>(made.get());
     if (!p)
