@@ -270,27 +270,34 @@ std::string find_shared_plugin(const std::string& filename, const std::vector<st
   return "";
 }
 
+// The library a world's or the server's <plugin> names, or "" when there is none to open: gazebo_ros's own (car's
+// node is it: an info) or a file on no search path (Gazebo's "Failed to load plugin" warning, the folders searched).
+static std::string locate_plugin(const std::string& filename, const std::string& owner, const std::string& where,
+                                 int line, std::vector<Diagnostic>* diagnostics) {
+  if (gazebo_ros_system_plugin(filename)) {
+    diagnostics->push_back({Severity::Info, "plugin-native", where,
+                            filename + " is gazebo_ros's own, which car's node is: nothing to load", line});
+    return "";
+  }
+  const auto dirs = shared_plugin_search_path();
+  const std::string path = find_shared_plugin(filename, dirs);
+  if (path.empty())
+    diagnostics->push_back({Severity::Warning, "plugin-unknown", where,
+                            "Failed to load plugin " + filename +
+                                ": no such file in GAZEBO_PLUGIN_PATH, the ROS library folders or LD_LIBRARY_PATH "
+                                "(searched: " + joined(dirs) + "); " + owner + " goes on without it",
+                            line});
+  return path;
+}
+
 std::vector<std::unique_ptr<SharedPlugin>> load_world_plugins(World& world, const std::vector<PluginSpec>& specs,
                                                               std::vector<Diagnostic>* diagnostics) {
   std::vector<std::unique_ptr<SharedPlugin>> out;
   const std::string owner = "world '" + world.description().name + "'";
   for (const auto& spec : specs) {
     const std::string where = "world/plugin[" + spec.name + "]";
-    if (gazebo_ros_system_plugin(spec.filename)) {
-      diagnostics->push_back({Severity::Info, "plugin-native", where,
-                              spec.filename + " is gazebo_ros's own, which car's node is: nothing to load", spec.line});
-      continue;
-    }
-    const auto dirs = shared_plugin_search_path();
-    const std::string path = find_shared_plugin(spec.filename, dirs);
-    if (path.empty()) {
-      diagnostics->push_back({Severity::Warning, "plugin-unknown", where,
-                              "Failed to load plugin " + spec.filename +
-                                  ": no such file in GAZEBO_PLUGIN_PATH, the ROS library folders or LD_LIBRARY_PATH "
-                                  "(searched: " + joined(dirs) + "); " + owner + " goes on without it",
-                              spec.line});
-      continue;
-    }
+    const std::string path = locate_plugin(spec.filename, owner, where, spec.line, diagnostics);
+    if (path.empty()) continue;
     SharedPluginContext ctx;
     ctx.world = &world;
     ctx.place = PluginPlace::World;
@@ -311,21 +318,8 @@ std::unique_ptr<SharedPlugin> load_system_plugin(World& world, const std::string
                                                  const std::vector<std::string>& args,
                                                  std::vector<Diagnostic>* diagnostics) {
   const std::string where = "server/plugin[" + filename + "]";
-  if (gazebo_ros_system_plugin(filename)) {
-    diagnostics->push_back({Severity::Info, "plugin-native", where,
-                            filename + " is gazebo_ros's own, which car's node is: nothing to load", 0});
-    return nullptr;
-  }
-  const auto dirs = shared_plugin_search_path();
-  const std::string path = find_shared_plugin(filename, dirs);
-  if (path.empty()) {
-    diagnostics->push_back({Severity::Warning, "plugin-unknown", where,
-                            "Failed to load plugin " + filename +
-                                ": no such file in GAZEBO_PLUGIN_PATH, the ROS library folders or LD_LIBRARY_PATH "
-                                "(searched: " + joined(dirs) + "); the server goes on without it",
-                            0});
-    return nullptr;
-  }
+  const std::string path = locate_plugin(filename, "the server", where, 0, diagnostics);
+  if (path.empty()) return nullptr;
   SharedPluginContext ctx;
   ctx.world = &world;
   ctx.place = PluginPlace::System;
