@@ -22,6 +22,7 @@ SimNode::SimNode() : nh_(), pnh_("~"), gz_("~") {}
 ros::Time SimNode::stamp(uint64_t tick) const { return sim_time(tick, world_->dt()); }
 
 bool SimNode::init() {
+  roscpp_.connect();
   std::string world_file;
   pnh_.param<std::string>("world_name", world_file, "");
   const bool rtf_finite = finite_param(pnh_, "rtf", 1.0, rtf_);

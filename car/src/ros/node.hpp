@@ -41,6 +41,7 @@
 #include "outputs.hpp"
 #include "lockstep.hpp"
 #include "pacer.hpp"
+#include "poll_gate.hpp"
 #include "publish_queue.hpp"
 #include "car_sim/world.hpp"
 
@@ -72,7 +73,14 @@ class SimNode : public NodeContext {
   void flush_published() override { publisher_.flush(); }
 
  protected:
-  void post(std::function<void()> job, size_t bytes) override { publisher_.post(std::move(job), bytes); }
+  void post(std::function<void()> job, size_t bytes) override {
+    publisher_.post(
+        [this, job = std::move(job), bytes] {
+          job();
+          roscpp_.published(bytes);
+        },
+        bytes);
+  }
   void published(const std::string& topic, uint32_t subscribers) override { lockstep_.published(topic, subscribers); }
   void listeners_changed() override { update_activity(); }
 
@@ -180,9 +188,12 @@ class SimNode : public NodeContext {
   ros::Publisher performance_pub_;
   std::chrono::steady_clock::time_point perf_wall_ = std::chrono::steady_clock::now();
   uint64_t perf_tick_ = 0;
+  // What waits in roscpp's publish queues: at most 32 MB (three Kinect clouds) before the publishing thread waits
+  // for roscpp's poll thread (poll_gate.hpp). Destroyed after publisher_, whose last jobs pass through it.
+  PollGate roscpp_{32u << 20};
   // Last member: destroyed first, so it sends what is queued while every publisher above still exists.
-  // Bound: 256 MB or 4096 messages waiting (25 Kinect clouds of 10 MB).
-  PublishQueue publisher_{256u << 20, 4096};
+  // Bound: 64 MB or 4096 messages waiting (6 Kinect clouds of 10 MB).
+  PublishQueue publisher_{64u << 20, 4096};
 };
 
 }  // namespace car_ros
