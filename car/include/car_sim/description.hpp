@@ -113,6 +113,11 @@ struct WorldCheck {
 };
 WorldCheck check_world_file(const std::string& path);
 
+// world_tool map's and plot's reading of a world file, in one call: flattened as flatten_world_file does (warnings as
+// there), the text in UTF-8 as check_world_file reads it, then loaded by load_world_string. Throws LoadError (a
+// byte that is not text: "not UTF-8 text (byte 0x..; ...)", as check_world_file's finding).
+WorldDescription load_flattened_world(const std::string& path, std::vector<Diagnostic>* warnings = nullptr);
+
 // Gazebo's empty world: a ground plane (mu 100, mu2 50) and a sun, 1 ms step.
 WorldDescription empty_world();
 

@@ -58,9 +58,9 @@ def cmd_check(a) -> int:
 
 
 def cmd_map(a) -> int:
-    from car import _core, world_map
+    from car import world_map
     try:
-        desc = _core.load_world_string(world_tools.flatten_to_string(a.world, []), a.world)
+        desc = world_tools.load(a.world, [])
         grid, origin, skipped = world_map.occupancy(desc, a.resolution, a.z_min, a.z_max)
     except (world_tools.WorldError, ValueError) as e:
         print('world_tool: error: %s' % e, file=sys.stderr)

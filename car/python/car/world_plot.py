@@ -26,9 +26,9 @@ def plot_runs(world_file, runs_parquet=None, out_png='runs.png', resolution=0.05
     """Writes the top view; returns (number of runs drawn, image size in pixels)."""
     import numpy as np
 
-    from car import _core, world_map, world_tools
+    from car import world_map, world_tools
     plt = _pyplot()
-    desc = _core.load_world_string(world_tools.flatten_to_string(world_file, []), world_file)
+    desc = world_tools.load(world_file, [])
     grid, (ox, oy), _ = world_map.occupancy(desc, resolution, z_min, z_max)
     h, w = grid.shape
     fig, ax = plt.subplots(figsize=(8, 8 * h / max(w, 1) + 0.5), dpi=100)

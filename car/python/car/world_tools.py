@@ -67,6 +67,17 @@ def flatten_to_string(path: str, warnings: list | None = None) -> str:
     return "<?xml version='1.0'?>\n" + ET.tostring(flatten(path, warnings).getroot(), encoding='unicode') + '\n'
 
 
+def load(path: str, warnings: list | None = None) -> dict:
+    """The world as world_tool map and plot read it, in one core call (car._core.load_flattened_world): flattened as
+    flatten() flattens it (warnings the same), its text read in UTF-8, then loaded as the simulator loads SDF text;
+    the dict car._core.load_world_file gives. Raises WorldError."""
+    from car import _core
+    try:
+        return _core.load_flattened_world(path, warnings)
+    except _core.LoadError as e:
+        raise WorldError(e.file, e.element, e.reason)
+
+
 # ---- check --------------------------------------------------------------------------------------------
 
 def check(path: str, inertia_tolerance: float = 0.10) -> dict:

@@ -355,6 +355,19 @@ int first_non_utf8(const std::string& s) {
   return -1;
 }
 
+// The flattened document as UTF-8 text (an ISO-8859-1 declaration transcoded); false, with why in *not_text, where
+// a byte is not text.
+bool flat_utf8(const tinyxml2::XMLDocument& doc, std::string* text, std::string* not_text) {
+  *text = utf8_of(print_document(doc, ""), declared_encoding(doc));
+  const int bad = first_non_utf8(*text);
+  if (bad < 0) return true;
+  char byte[8];
+  std::snprintf(byte, sizeof(byte), "0x%02x", static_cast<unsigned char>((*text)[bad]));
+  *not_text = std::string("not UTF-8 text (byte ") + byte +
+              "; car reads worlds in UTF-8, and in ISO-8859-1 where their declaration says so)";
+  return false;
+}
+
 }  // namespace
 
 std::string flatten_world_file(const std::string& path, std::vector<Diagnostic>* warnings) {
@@ -379,14 +392,9 @@ WorldCheck check_world_file(const std::string& path) {
   out.findings.insert(out.findings.end(), rules.begin(), rules.end());
   for (const auto& f : out.findings)
     if (f.severity == Severity::Error) return out;
-  const std::string text = utf8_of(print_document(doc, ""), declared_encoding(doc));
-  if (const int bad = first_non_utf8(text); bad >= 0) {
-    char byte[8];
-    std::snprintf(byte, sizeof(byte), "0x%02x", static_cast<unsigned char>(text[bad]));
-    out.findings.push_back({Severity::Error, "world-unreadable", "",
-                            std::string("not UTF-8 text (byte ") + byte +
-                                "; car reads worlds in UTF-8, and in ISO-8859-1 where their declaration says so)",
-                            0});
+  std::string text, not_text;
+  if (!flat_utf8(doc, &text, &not_text)) {
+    out.findings.push_back({Severity::Error, "world-unreadable", "", not_text, 0});
     return out;
   }
   try {
@@ -399,6 +407,14 @@ WorldCheck check_world_file(const std::string& path) {
         {Severity::Error, "world-load", "", (e.element().empty() ? "" : e.element() + ": ") + e.reason(), 0});
   }
   return out;
+}
+
+WorldDescription load_flattened_world(const std::string& path, std::vector<Diagnostic>* warnings) {
+  tinyxml2::XMLDocument doc;
+  flatten_document(path, &doc, warnings);
+  std::string text, not_text;
+  if (!flat_utf8(doc, &text, &not_text)) throw LoadError(path, 0, "", not_text);
+  return load_world_string(text, path);
 }
 
 }  // namespace car_sim

@@ -498,37 +498,51 @@ void bind_paths(py::module_& m) {
         py::arg("uri"), py::arg("base_dir") = "", "The include rule: a path for a URI, '' when not found.");
 
   bind_world_check(m);
-  m.def("simulated_geometry", &car_sim::simulated_geometry,
-        "The SDF geometry elements car simulates; the others are ignored with a warning.");
 }
 
 // SDF worlds: the flattener, the loaders and the parsed WorldDescription.
 void bind_worlds(py::module_& m) {
-  // The world flattener (world_tool): LoadError with the error's parts as attributes file, element and reason.
+  // The world flattener (world_tool) and its loader: LoadError with the error's parts as attributes file, element
+  // and reason. With a list for warnings, an include that resolves nowhere is left out and its warning appended
+  // there (as the simulator does); without, it is an error.
+  auto flat = [m](const std::string& path, py::object warnings, auto read) {
+    try {
+      std::vector<Diagnostic> found;
+      auto out = read(path, warnings.is_none() ? nullptr : &found);
+      for (const auto& d : found) warnings.attr("append")(diagnostic(d));
+      return out;
+    } catch (const LoadError& e) {
+      py::object type = m.attr("LoadError");
+      py::object err = type(e.what());
+      err.attr("file") = e.file();
+      err.attr("element") = e.element();
+      err.attr("reason") = e.reason();
+      PyErr_SetObject(type.ptr(), err.ptr());
+      throw py::error_already_set();
+    }
+  };
   m.def(
       "flatten_world",
-      [m](const std::string& path, py::object warnings) {
-        try {
-          // bytes: the text keeps the input's encoding, named in its declaration. With a list for warnings, an
-          // include that resolves nowhere is left out and its warning appended there (as the simulator does).
-          std::vector<Diagnostic> found;
-          py::bytes out(flatten_world_file(path, warnings.is_none() ? nullptr : &found));
-          for (const auto& d : found) warnings.attr("append")(diagnostic(d));
-          return out;
-        } catch (const LoadError& e) {
-          py::object type = m.attr("LoadError");
-          py::object err = type(e.what());
-          err.attr("file") = e.file();
-          err.attr("element") = e.element();
-          err.attr("reason") = e.reason();
-          PyErr_SetObject(type.ptr(), err.ptr());
-          throw py::error_already_set();
-        }
+      [flat](const std::string& path, py::object warnings) {
+        // bytes: the text keeps the input's encoding, named in its declaration
+        return flat(path, warnings, [](const std::string& p, std::vector<Diagnostic>* w) {
+          return py::bytes(flatten_world_file(p, w));
+        });
       },
       py::arg("path"), py::arg("warnings") = py::none(),
       "A world file as one self-contained SDF text (bytes, in the encoding its declaration names): includes expanded (the loader's include rule, at most 32 deep), "
       "nested models hoisted as 'parent::child', <state> applied. Raises LoadError (with file, element, reason).");
 
+  m.def(
+      "load_flattened_world",
+      [flat](const std::string& path, py::object warnings) {
+        return flat(path, warnings, [](const std::string& p, std::vector<Diagnostic>* w) {
+          return world_dict(load_flattened_world(p, w));
+        });
+      },
+      py::arg("path"), py::arg("warnings") = py::none(),
+      "A world file flattened as flatten_world flattens it, then loaded, in one call: the dict load_world_file "
+      "gives (world_tool map and plot). Raises LoadError (with file, element, reason).");
   m.def("load_world_file", [](const std::string& path) { return world_dict(load_world_file(path)); }, py::arg("path"),
         "An SDF world as the simulator reads it (sdformat, includes resolved, <state> applied), as a dict.");
   m.def(

@@ -66,6 +66,29 @@ def test_it(sim):
     assert 'car_bag' in xml and 'car_seed' in xml
 
 
+def test_a_recording_read_after_a_wait_holds_every_message_sent_before_it(tmp_path):
+    # a reader slower than the simulator: each message takes 2 ms of wall time to record (a busy machine's Python).
+    # At rtf 0 run_for(3.0) is over long before 300 such messages are read, and the recording must still hold every
+    # odometry message of the 3 s when run_for returns: the diff drive publishes at 100 Hz of sim time, stamped
+    # 0.01 s to 3.00 s. (Without Sim._settle it held 16 of the 300 when run_for returned.)
+    r = run_pytest(tmp_path, '''
+import time
+from car.testing.sim import Recording
+_record = Recording._cb
+def _slow(self, msg, args):
+    time.sleep(0.002)
+    _record(self, msg, args)
+Recording._cb = _slow
+
+def test_it(sim):
+    rec = sim.record({'/odom': 'nav_msgs/Odometry'})
+    assert sim.run_for(3.0) == 3.0
+    stamps = [m.header.stamp.to_sec() for m in rec['/odom']]
+    assert len(stamps) == 300 and stamps[-1] == 3.0, (len(stamps), stamps[-1:])
+''')
+    assert r.returncode == 0, r.stdout + r.stderr
+
+
 DUMP = '''
 import os, pickle
 from io import BytesIO

@@ -189,5 +189,48 @@ def test_check_reads_the_world_in_one_core_call(monkeypatch):
     assert calls == [path]
 
 
+def test_map_reads_the_world_in_one_core_call(monkeypatch):
+    # world_tool map and plot: the flattener and the loader behind one call, no text through Python's parser
+    calls = []
+    real = _core.load_flattened_world
+    monkeypatch.setattr(_core, 'load_flattened_world', lambda path, w=None: calls.append(path) or real(path, w))
+    for name in ('flatten_world', 'load_world_string', 'load_world_file'):
+        monkeypatch.setattr(_core, name, lambda *a, **k: pytest.fail('map parsed the world again'))
+    monkeypatch.setattr(ET, 'XMLParser', lambda *a, **k: pytest.fail('map parsed the world in Python'))
+    world_tools.load(INCLUDES, [])
+    assert calls == [INCLUDES]
+
+
+def test_load_gives_the_world_the_simulator_reads():
+    # includes resolved by sdformat (the simulator) == includes expanded by the flattener, then loaded
+    assert models_of(world_tools.load(INCLUDES)) == models_of(_core.load_world_file(INCLUDES))
+
+
+def test_load_leaves_a_missing_include_out_with_its_warning():
+    warnings = []
+    world = world_tools.load(os.path.join(WORLDS, 'bad', 'missing_model.world'), warnings)
+    assert world['models'] == []
+    assert [(w['code'], w['element']) for w in warnings] == [('include-missing', 'world[bad]/include[0]/uri')]
+
+
+def test_load_reads_iso_8859_1_as_its_declaration_says(tmp_path):
+    world = tmp_path / 'latin1.world'
+    world.write_bytes(b'<?xml version="1.0" encoding="ISO-8859-1"?>\n<sdf version="1.6"><world name="w">'
+                      b'<model name="m\xe9"><static>true</static><link name="l"/></model></world></sdf>\n')
+    assert [m['name'] for m in world_tools.load(str(world))['models']] == ['m\u00e9']
+
+
+def test_load_of_a_byte_that_is_not_text(tmp_path):
+    # no declaration: UTF-8, where the lone byte 0xE9 is not text
+    world = tmp_path / 'not_text.world'
+    world.write_bytes(b'<sdf version="1.6"><world name="w">'
+                      b'<model name="m\xe9"><static>true</static><link name="l"/></model></world></sdf>\n')
+    with pytest.raises(world_tools.WorldError) as e:
+        world_tools.load(str(world))
+    assert (e.value.file, e.value.element) == (str(world), '')
+    assert e.value.reason == ('not UTF-8 text (byte 0xe9; car reads worlds in UTF-8, and in ISO-8859-1 where their '
+                              'declaration says so)')
+
+
 def test_box_house_is_clean():
     assert world_tools.check(os.path.join(ROOT, 'worlds', 'box_house.world'))['findings'] == []

@@ -24,8 +24,8 @@ def write_plot(path, world, trajectories, title=''):
     plt = world_plot._pyplot()
     if world:
         import numpy as np
-        from car import _core, world_map, world_tools
-        desc = _core.load_world_string(world_tools.flatten_to_string(world), world)
+        from car import world_map, world_tools
+        desc = world_tools.load(world)
         res = 0.05
         grid, (ox, oy), _ = world_map.occupancy(desc, res, 0.05, 0.5)
         h, w = grid.shape

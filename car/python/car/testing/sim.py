@@ -159,6 +159,10 @@ class Recording:
         self.lock = threading.Lock()
         self.generation = 0
         self.subs = []
+        # messages recorded per (topic, publisher's caller id), and those its connection had carried before we
+        # subscribed (rospy shares one connection among a process's subscribers of a topic)
+        self.received = {}
+        self.before = {}
         self._subscribe()
 
     def _subscribe(self):
@@ -166,14 +170,47 @@ class Recording:
         self.subs = [waits.receive_all(rospy.Subscriber(t, cls, self._cb, callback_args=(t, self.generation),
                                                         queue_size=None, tcp_nodelay=True))
                      for t, cls in self.topics.items()]
+        with self.lock:
+            self.received = {}
+            self.before = {(s.resolved_name, (c.header or {}).get('callerid')): c.stat_num_msg
+                           for s in self.subs for c in list(s.impl.connections)}
 
     def _cb(self, msg, args):
         topic, generation = args
         header = getattr(msg, 'header', None)
         stamp = header.stamp.to_sec() if header is not None and hasattr(header, 'stamp') else self.sim.clock.now()
+        publisher = (getattr(msg, '_connection_header', None) or {}).get('callerid')
         with self.lock:
             if generation == self.generation:
                 self.messages.append(Recorded(topic, stamp, msg))
+                self.received[(topic, publisher)] = self.received.get((topic, publisher), 0) + 1
+
+    def settle(self, hang_s=60.0):
+        """Returns once the recording holds every message its publishers had sent to this process when it was
+        called (the simulator paused after a wait: everything up to the pause). A publisher's count of messages
+        sent on its connection to us (waits.sent_to_us, the ROS slave API) is the target; a message the publisher
+        dropped (its queue full) is not counted there, so none is waited for. At rtf 0 the simulator runs ahead
+        of a slow reader by seconds of sim time, so without this a recording read right after run_for could end
+        early. A wall-clock bound only: AssertionError after hang_s, naming the topic and the counts."""
+        import time
+        targets = []
+        for s in self.subs:
+            for c in list(s.impl.connections):
+                n = waits.sent_to_us(c.endpoint_id, s.resolved_name)
+                if n is not None:
+                    targets.append((s.resolved_name, c, n))
+        deadline = time.monotonic() + hang_s
+        for topic, c, n in targets:
+            key = (topic, (c.header or {}).get('callerid'))
+            while True:
+                with self.lock:
+                    got = self.received.get(key, 0) + self.before.get(key, 0)
+                if got >= n or c.done:
+                    break
+                if time.monotonic() > deadline:
+                    raise AssertionError('recording: %d of the %d messages %s sent on %s arrived within %.0f s of '
+                                         'wall time' % (got, n, key[1], topic, hang_s))
+                time.sleep(0.002)
 
     def __getitem__(self, topic):
         with self.lock:
@@ -416,19 +453,30 @@ class Sim:
     def run_for(self, seconds):
         """Runs the simulation for `seconds` of sim time (it pauses at the first /clock tick at or after the
         target, so it may run a little longer) and returns the sim time [s] it stopped at."""
-        return waits.run_for(self.clock, seconds, seed=self.seed, hang_s=self.hang_s)
+        t = waits.run_for(self.clock, seconds, seed=self.seed, hang_s=self.hang_s)
+        self._settle()
+        return t
 
     def until(self, predicate, timeout=10.0, what=None):
         """Runs the simulation until predicate() is truthy and returns its value; fails (AssertionError naming
         `what` or the predicate's source, and the seed) when `timeout` sim seconds pass first."""
-        return waits.wait_sim(self.clock, predicate, timeout, waits.describe(predicate, what), seed=self.seed,
-                              hang_s=self.hang_s)
+        value = waits.wait_sim(self.clock, predicate, timeout, waits.describe(predicate, what), seed=self.seed,
+                               hang_s=self.hang_s)
+        self._settle()
+        return value
 
     def wait_message(self, topic, msg_type, where=None, timeout=10.0, what=None):
         """Runs the simulation until a message on topic (msg_type: class or 'pkg/Type') for which where(msg) is
         true arrives, within `timeout` sim seconds; returns it."""
-        return waits.wait_message(self.clock, topic, msg_type, where, timeout, what, seed=self.seed,
-                                  hang_s=self.hang_s)
+        msg = waits.wait_message(self.clock, topic, msg_type, where, timeout, what, seed=self.seed,
+                                 hang_s=self.hang_s)
+        self._settle()
+        return msg
+
+    def _settle(self):
+        # after a wait the recordings hold what was sent up to it, however far the simulator ran ahead of them
+        for rec in self.recordings:
+            rec.settle(self.hang_s)
 
     # ---- the world ------------------------------------------------------------------------------------------
     def pose(self, model, link=None):

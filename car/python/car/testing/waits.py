@@ -57,6 +57,37 @@ def receive_all(sub):
     return sub
 
 
+def sent_to_us(publisher_uri, topic):
+    """How many messages of `topic` the node at publisher_uri (its XML-RPC URI) has sent on its connection to this
+    node, from the ROS slave API that rosnode info reads: getBusInfo names the connection (direction 'o', our
+    caller id at the other end), getBusStats counts its messages. None when the node does not answer or lists no
+    such connection. roscpp lists a publication's connections as [id, bytes, data bytes, messages, 0], rospy as
+    [id, bytes, messages, connected] after the topic's data bytes."""
+    import xmlrpc.client
+    me = rospy.get_caller_id()
+    try:
+        api = xmlrpc.client.ServerProxy(publisher_uri)
+        info = api.getBusInfo(me)
+        stats = api.getBusStats(me)
+    except (OSError, xmlrpc.client.Error):
+        return None
+    # [code, message, value]; roscpp's getBusStats gives the value alone: [publications, subscriptions]
+    if len(info) != 3 or info[0] != 1:
+        return None
+    info = info[2]
+    if len(stats) == 3 and isinstance(stats[0], int):
+        stats = stats[2] if stats[0] == 1 else None
+    ours = {c[0] for c in info if len(c) > 4 and c[1] == me and c[2] == 'o' and c[4] == topic}
+    for entry in stats[0] if stats else []:
+        if entry[0] != topic:
+            continue
+        roscpp = len(entry) == 2
+        for c in entry[1] if roscpp else entry[2]:
+            if c[0] in ours:
+                return c[3] if roscpp else c[2]
+    return None
+
+
 def wait_connected(sub, hang_s=60.0):
     """Waits (wall time, a hang bound only) until someone publishes sub's topic to us: sim time stands still while
     the simulation is paused, and a lazy publisher sends nothing before the connection exists."""
