@@ -2,7 +2,7 @@
 // Expected names worked out from tf::resolve's three cases (docs/COMPAT-spawn.md rule 4).
 #include <gtest/gtest.h>
 
-#include "conversions.hpp"
+#include "frames.hpp"
 
 using car_ros::resolve_tf;
 
