@@ -1,7 +1,7 @@
-// Typed ports: the inputs a plug-in kind declares, as a small closed set of sample types that mirror the ROS
-// message families (Twist, Wrench, JointTrajectory, a pose target, a trigger). Each port carries its topic and
-// namespace, resolved once in the core from the kind's schema; a skin (the ROS bridge) subscribes by sample type
-// and hands every value to World::command, which checks it once. No ROS headers.
+// Typed ports: what a plug-in kind declares it takes and gives, as small closed sets of sample types that mirror the
+// ROS message families: inputs (Twist, Wrench, JointTrajectory, a pose target, ...), which World::command checks
+// once, and outputs (the table Sample: one alternative per family, one converter each in a skin). Each port carries
+// its topic, namespace and frames, resolved once in the core from the kind's schema. No ROS headers.
 #pragma once
 
 #include <Eigen/Geometry>
