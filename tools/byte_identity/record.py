@@ -88,6 +88,8 @@ if scenario == 'rover':
     pub = drive('/rover_velocity_controller/cmd_vel', 0.4, 0.5)
 elif scenario in ('sensors', 'box_house'):
     pub = drive('/cmd_vel', 0.3, 0.4)
+elif scenario == 'plugins':
+    pub = drive('/r1/cmd_vel', 0.3, 0.4)
 elif scenario == 'arm':
     from control_msgs.msg import FollowJointTrajectoryAction, FollowJointTrajectoryGoal
     from trajectory_msgs.msg import JointTrajectoryPoint
@@ -100,7 +102,7 @@ elif scenario == 'arm':
     g.trajectory.points = [p]
     client.send_goal(g)
 else:
-    wait(lambda: False, 'a known scenario (rover, arm, sensors, box_house), not ' + scenario, 0)
+    wait(lambda: False, 'a known scenario (rover, arm, sensors, box_house, plugins), not ' + scenario, 0)
 # the node takes the command or goal on its own thread and says nothing back: it has this long, paused
 time.sleep(1.0)
 rospy.ServiceProxy('/gazebo/unpause_physics', Empty)()

@@ -5,6 +5,8 @@
 #   arm        the ros_control arm (a follow_joint_trajectory goal), 3 s: joint_states, controller state, result
 #   sensors    sensor_bot.xacro (laser, depth camera, IMU with noise) driving in box_house, 2 s: every sensor topic
 #   box_house  the tutorial's seed car (car_camera_lidar02.xacro) driving in box_house, 3 s: odom, tf, scan
+#   plugins    plugin_frames' box under a tf_prefix (p3d, planar_move, range, block laser, bumper, camera) and
+#              ray_sensors' cube (sonars, velodyne, stereo multicamera), 2 s: every one of their topics
 # /tf counts from 1 s (TOPIC@FROM): sim_node advertises it on its first message, so the recorder joins late.
 # Run it with two builds and compare (docs/ARCHITECTURE.md, "Byte identity").
 ws=$1; sc=$2; port=$3; here=$(cd $(dirname $0) && pwd)
@@ -14,7 +16,9 @@ case $sc in
   sensors) T=2.0; topics="/scan /imu /camera/rgb/image_raw /camera/rgb/camera_info /camera/depth/image_raw
                           /camera/depth/camera_info /camera/depth/points" ;;
   box_house) T=3.0; topics="/odom /tf@1 /scan" ;;
-  *) echo "run.sh: unknown scenario '$sc' (rover, arm, sensors or box_house)" >&2; exit 2 ;;
+  plugins) T=2.0; topics="/r1/truth /r1/odom /r1/scan /r1/sonar /r1/block /r1/bumper /r1/cam/camera_info /sonar
+                          /sonar_slow /velodyne_points /stereo/left/camera_info /stereo/right/image_raw /tf@1" ;;
+  *) echo "run.sh: unknown scenario '$sc' (rover, arm, sensors, box_house or plugins)" >&2; exit 2 ;;
 esac
 source $ws/devel/setup.bash
 export ROS_MASTER_URI=http://localhost:$port

@@ -26,12 +26,10 @@ struct OdometryOut : Output {
   std::vector<JointState> joints;                          // the driven wheel joints at that time
   std::vector<double> efforts;  // [N m] or [N], one per joint, for a port with_effort; empty: none
   void visit(FieldVisitor& v) const override;
-  bool odometry_sample(OdometrySample* s) const override {
-    *s = {pose, linear, angular, std::nullopt};
-    return true;
+  void samples(SampleList& list) const override {
+    list.add(OdometrySample{pose, linear, angular, std::nullopt});
+    list.add(JointStatesSample{&joints, efforts.empty() ? nullptr : &efforts});
   }
-  const std::vector<JointState>* joint_states_sample() const override { return &joints; }
-  const std::vector<double>* joint_efforts_sample() const override { return efforts.empty() ? nullptr : &efforts; }
 };
 
 // A drive's odometry port: frames from the schema keys odometryFrame and robotBaseFrame, under the plug-in's

@@ -45,31 +45,24 @@ struct Output {
   uint64_t tick = 0;          // stamped by the world
   std::string port;           // the one output port it is for ("": every port of its instance)
   virtual void visit(FieldVisitor& v) const = 0;
-  // Its samples for the output ports' converters (include/car_sim/ports.hpp): false / nullptr when it has none.
-  virtual bool odometry_sample(OdometrySample* s) const { return false; }
-  virtual const std::vector<JointState>* joint_states_sample() const { return nullptr; }
-  // ---- cameras: frame `frame` of the output (a multicamera has one per side); false when it has none
-  virtual bool image_sample(size_t frame, ImageSample* s) const { return false; }
-  // ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
-  virtual const LaserScanSample* laser_scan_sample() const { return nullptr; }
-  virtual const PointCloudSample* point_cloud_sample() const { return nullptr; }
-  virtual const LidarCloudSample* lidar_cloud_sample() const { return nullptr; }
-  virtual const RangeSample* range_sample() const { return nullptr; }
-  // port: the Imu port's name (an instance with two, as hector_imu's measurement and biases, gives each its own)
-  virtual bool imu_sample(const std::string& port, ImuSample* s) const { return false; }
-  virtual const NavSatFixSample* nav_sat_fix_sample() const { return nullptr; }
-  // Vector3 and MagneticField ports
-  virtual bool vector3_sample(Eigen::Vector3d* v) const { return false; }
-  virtual const Wrench* wrench_sample() const { return nullptr; }
-  virtual const std::vector<ContactPair>* contacts_sample() const { return nullptr; }
-  // Transform ports: a frame in its parent frame
-  virtual bool pose_sample(Eigen::Isometry3d* pose) const { return false; }
-  // JointStates ports with_effort: one effort per joint of joint_states_sample [N m] or [N]
-  virtual const std::vector<double>* joint_efforts_sample() const { return nullptr; }
-  // ---- ros_control's controllers ----
-  virtual const ControllerStateSample* controller_state_sample() const { return nullptr; }
-  virtual const TrajectoryStateSample* trajectory_state_sample() const { return nullptr; }
-  virtual const GoalResultSample* goal_result_sample() const { return nullptr; }
+  // Its samples (include/car_sim/ports.hpp: the table Sample), each once: for every port of its type, or named for
+  // one port, or with its frame (SampleList::add). None by default.
+  virtual void samples(SampleList& list) const {}
+  // The sample of type S a port named `port` reading frame `frame` takes (SampleList::find), for readers other than
+  // the ROS bridge (car_gazebo's sensors, tests): a pointer where Sample holds S by pointer, else an optional copy.
+  template <class S>
+  SampleHandle<S> sample_of(std::string_view port = {}, size_t frame = 0) const {
+    SampleList list;
+    samples(list);
+    const Sample s = list.find(sample_type<S>(), port, frame);
+    if constexpr (detail::kByPointer<S>) {
+      const auto* p = std::get_if<const S*>(&s);
+      return p ? *p : nullptr;
+    } else {
+      const auto* p = std::get_if<S>(&s);
+      return p ? std::optional<S>(*p) : std::nullopt;
+    }
+  }
 };
 using OutputPtr = std::unique_ptr<Output>;
 using OutputQueue = std::vector<OutputPtr>;
@@ -382,7 +375,8 @@ OutputPort joint_states_port(const PluginConfig& c, const std::string& robot, ui
 
 // ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
 // A sensor's output port: `type` on the topic its schema key `topic_key` names under the plug-in's namespace, the
-// header frame `frame` with its leading '/'s dropped (no tf_prefix), the publisher's queue as upstream.
+// header frame `frame` with its leading '/'s dropped (FrameRule::NoPrefix; a kind may set another), the
+// publisher's queue as upstream.
 OutputPort sensor_port(const PluginConfig& c, const std::string& robot, const std::string& name, SampleType type,
                        const std::string& topic_key, const std::string& frame, uint32_t queue);
 

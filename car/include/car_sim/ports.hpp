@@ -1,7 +1,7 @@
-// Typed ports: the inputs a plug-in kind declares, as a small closed set of sample types that mirror the ROS
-// message families (Twist, Wrench, JointTrajectory, a pose target, a trigger). Each port carries its topic and
-// namespace, resolved once in the core from the kind's schema; a skin (the ROS bridge) subscribes by sample type
-// and hands every value to World::command, which checks it once. No ROS headers.
+// Typed ports: what a plug-in kind declares it takes and gives, as small closed sets of sample types that mirror the
+// ROS message families: inputs (Twist, Wrench, JointTrajectory, a pose target, ...), which World::command checks
+// once, and outputs (the table Sample: one alternative per family, one converter each in a skin). Each port carries
+// its topic, namespace and frames, resolved once in the core from the kind's schema. No ROS headers.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -12,6 +12,8 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -111,33 +113,10 @@ struct CommandResult {
   std::vector<Note> notes;
 };
 
-// ---- output ports -----------------------------------------------------------------------------------------
-
-// The sample families of output ports: a pose and twist (Odometry), joint states (JointStates), the child links'
-// frames relative to their parents from those joints (JointTransforms, TF only), and the cameras' and sensors'
-// families below.
-// An output hands its samples over through Output's *_sample functions (plugin.hpp), one per family.
-enum class SampleType {
-  Odometry, JointStates, JointTransforms,
-  // ---- cameras (ImageSample, below): the colour image, its camera_info, the depth image, the organized depth cloud
-  Image, CameraInfo, DepthImage, DepthCloud,
-  // ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
-  LaserScan,      // sensor_msgs/LaserScan
-  PointCloud,     // sensor_msgs/PointCloud, one channel (block_laser)
-  LidarCloud,     // sensor_msgs/PointCloud2, fields x y z intensity ring (velodyne)
-  Range,          // sensor_msgs/Range
-  Imu,            // sensor_msgs/Imu
-  NavSatFix,      // sensor_msgs/NavSatFix
-  Vector3,        // geometry_msgs/Vector3Stamped (a velocity, a magnetic field)
-  MagneticField,  // sensor_msgs/MagneticField (a Vector3 sample)
-  Wrench,         // geometry_msgs/WrenchStamped
-  Contacts,       // gazebo_msgs/ContactsState
-  Transform,      // a pose on TF only: frame -> child_frame
-  // ---- ros_control's controllers ----
-  ControllerState,  // control_msgs/JointControllerState (ControllerStateSample)
-  TrajectoryState,  // control_msgs/JointTrajectoryControllerState (TrajectoryStateSample)
-  GoalResult,       // the end of a TrajectoryGoal (GoalResultSample): the action's result, on no topic of its own
-};
+// ---- output samples -----------------------------------------------------------------------------------------
+// What output ports carry, one type per message family (the table Sample, below). A kind's output struct derives
+// from the samples it holds, so the fields keep their names for the kind's own code, tests and Python fields.
+// Frames and covariances are the port's.
 
 // A pose with a twist: a frame in its parent frame, and the velocity of its origin.
 struct OdometrySample {
@@ -149,9 +128,17 @@ struct OdometrySample {
   std::optional<Eigen::Quaterniond> orientation;
 };
 
+// A robot's joint states, as views of the vectors of the output that holds them.
+struct JointStatesSample {
+  const std::vector<JointState>* joints = nullptr;
+  const std::vector<double>* efforts = nullptr;  // [N m] or [N], one per joint (a port with_effort); null: none
+};
+// The child links' frames relative to their parents from the same joint states (TF only).
+struct JointTransformsSample : JointStatesSample {};
+
 // ---- cameras -----------------------------------------------------------------------------------------------
 
-// One camera frame, as views of the arrays of the output that holds it (Output::image_sample): the bridge keeps
+// One camera frame, as views of the arrays of the output that holds it (a value in Sample): the bridge keeps
 // that output alive until the frame's messages are serialised, straight from these arrays. A part the plug-in left
 // out (Plugin::set_parts) is null.
 struct ImageSample {
@@ -177,6 +164,206 @@ inline uint16_t depth_mm(float d) {
 // Whether a pixel of the organized cloud has a point (x y z [m]; z is its depth, NaN where there is none).
 inline bool has_point(const float* xyz) { return std::isfinite(xyz[2]); }
 
+// The same frame, read by the ports of the other camera families (an output lists its ImageSample once).
+struct CameraInfoSample : ImageSample {};  // sensor_msgs/CameraInfo: reads no array
+struct DepthImageSample : ImageSample {};  // the depth image: reads `depth`
+struct DepthCloudSample : ImageSample {};  // the organized cloud: reads `points` and `point_rgb`
+
+// ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
+
+// A planar scan, sensor frame.
+struct LaserScanSample {
+  float angle_min = 0, angle_max = 0, angle_increment = 0;  // [rad]
+  float range_min = 0, range_max = 0;                       // [m]
+  std::vector<float> ranges;       // [m]; +inf: no hit within range_max
+  std::vector<float> intensities;  // laser_retro of the hit surface
+};
+
+// Points with one channel of intensities, sensor frame.
+struct PointCloudSample {
+  std::vector<float> points;       // x y z per point [m]
+  std::vector<float> intensities;  // one per point
+};
+
+// A multi-beam lidar's points with intensity and ring (beam index), sensor frame.
+struct LidarCloudSample {
+  std::vector<float> points;       // x y z per point [m]
+  std::vector<float> intensities;  // one per point
+  std::vector<uint16_t> rings;     // one per point, 0 = the lowest beam
+};
+
+// One range reading (sensor_msgs/Range's fields).
+struct RangeSample {
+  int radiation = 0;                   // 0 ULTRASOUND, 1 INFRARED
+  float field_of_view = 0;             // [rad]
+  float min_range = 0, max_range = 0;  // [m]
+  float range = 0;                     // [m]
+};
+
+// An inertial measurement, sensor frame.
+struct ImuSample {
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // sensor frame in the world
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();       // [rad/s]
+  Eigen::Vector3d linear_acceleration = Eigen::Vector3d::Zero();    // [m/s^2]
+};
+
+// A satellite fix.
+struct NavSatFixSample {
+  double latitude = 0, longitude = 0, altitude = 0;             // [deg], [deg], [m]
+  int status = 0, service = 0;                                  // sensor_msgs/NavSatStatus
+  Eigen::Vector3d position_variance = Eigen::Vector3d::Zero();  // [m^2] diagonal, DIAGONAL_KNOWN
+};
+
+// A vector, e.g. a velocity [m/s] (hector_gps) or a magnetic field (hector_magnetic), in the port's frame.
+struct Vector3Sample {
+  Eigen::Vector3d vector = Eigen::Vector3d::Zero();
+};
+// The same vector as sensor_msgs/MagneticField (hector_magnetic's useMagneticFieldMsgs).
+struct MagneticFieldSample : Vector3Sample {};
+
+// A force [N] and torque [N m] (f3d: world frame; ft_sensor: the joint's child link).
+struct WrenchSample {
+  Wrench wrench;
+};
+
+// One pair of bodies in contact: gazebo_msgs/ContactState's fields.
+struct ContactPair {
+  std::string collision1, collision2;   // "model::link::collision" (this sensor's), "model::link" (the other)
+  std::vector<Wrench> wrenches;         // [N], world frame: force on collision1 at each point (torque 0)
+  Wrench total;                         // sum of wrenches
+  std::vector<Eigen::Vector3d> positions;  // [m], world frame
+  std::vector<Eigen::Vector3d> normals;    // unit, world frame, from collision2 into collision1
+  std::vector<double> depths;              // [m]
+};
+// What a bumper touched during the last step: gazebo_msgs/ContactsState's states.
+struct ContactsSample {
+  std::vector<ContactPair> states;
+};
+
+// A frame in its parent frame (TF only).
+struct TransformSample {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+};
+
+// ---- ros_control's controllers ----
+
+// control_msgs/JointControllerState of the PID joint controllers.
+struct ControllerStateSample {
+  double set_point = 0, process_value = 0, process_value_dot = 0, error = 0, time_step = 0, command = 0;
+  double p = 0, i = 0, d = 0, i_clamp = 0;  // the PID's gains and its integral clamp
+  bool antiwindup = false;
+};
+
+// joint_trajectory_controller's state: desired and actual per joint (the error is desired - actual).
+struct TrajectoryStateSample {
+  std::vector<std::string> joints;
+  std::vector<double> desired_position, desired_velocity, actual_position, actual_velocity;
+};
+
+// How a TrajectoryGoal ended.
+struct GoalResultSample {
+  enum class Status { Succeeded, Canceled, Aborted };
+  uint64_t goal = 0;  // the TrajectoryGoal's id
+  Status status = Status::Succeeded;
+  int error_code = 0;  // control_msgs/FollowJointTrajectoryResult's
+  std::string error_string;
+};
+
+// ---- the table of sample types --------------------------------------------------------------------------------
+
+// Every sample type of output ports, one per message family: the closed set, and the one table a new family joins
+// (docs/ARCHITECTURE.md "A new message family"). A sample the output holds (its struct derives from it) is handed
+// over as a pointer, so scans, clouds and contacts are never copied; one made when asked (a view of a camera
+// frame's arrays, ros_controllers' odometry) as a value. A ROS skin has one converter per alternative.
+using Sample = std::variant<std::monostate,                 // none: the output has no sample for that port
+                            OdometrySample,                 // nav_msgs/Odometry, and its transform (OutputPort::tf)
+                            JointStatesSample,              // sensor_msgs/JointState
+                            JointTransformsSample,          // TF: each driven joint's child link in its parent
+                            ImageSample,                    // sensor_msgs/Image: the frame's colour image
+                            CameraInfoSample,               // sensor_msgs/CameraInfo
+                            DepthImageSample,               // sensor_msgs/Image: 32FC1 [m] or 16UC1 [mm]
+                            DepthCloudSample,               // sensor_msgs/PointCloud2, organized
+                            const LaserScanSample*,         // sensor_msgs/LaserScan
+                            const PointCloudSample*,        // sensor_msgs/PointCloud, one channel (block_laser)
+                            const LidarCloudSample*,        // sensor_msgs/PointCloud2: x y z intensity ring
+                            const RangeSample*,             // sensor_msgs/Range
+                            ImuSample,                      // sensor_msgs/Imu
+                            const NavSatFixSample*,         // sensor_msgs/NavSatFix
+                            Vector3Sample,                  // geometry_msgs/Vector3Stamped
+                            MagneticFieldSample,            // sensor_msgs/MagneticField
+                            const WrenchSample*,            // geometry_msgs/WrenchStamped
+                            const ContactsSample*,          // gazebo_msgs/ContactsState
+                            TransformSample,                // TF only: frame -> child_frame
+                            const ControllerStateSample*,   // control_msgs/JointControllerState
+                            const TrajectoryStateSample*,   // control_msgs/JointTrajectoryControllerState
+                            const GoalResultSample*>;       // a TrajectoryGoal's end: to the action server
+
+// A port's sample type: the index of its alternative in Sample (sample_type<LaserScanSample>()).
+struct SampleType {
+  size_t index = 0;
+  bool operator==(SampleType o) const { return index == o.index; }
+  bool operator!=(SampleType o) const { return index != o.index; }
+};
+
+namespace detail {
+template <class T, class V>
+struct IndexIn;
+// The index of T among the alternatives, or their count when T is none of them.
+template <class T, class... As>
+struct IndexIn<T, std::variant<As...>> {
+  static constexpr size_t find() {
+    constexpr bool same[] = {std::is_same_v<T, As>...};
+    for (size_t i = 0; i < sizeof...(As); ++i)
+      if (same[i]) return i;
+    return sizeof...(As);
+  }
+  static constexpr size_t value = find();
+};
+constexpr size_t kSampleTypes = std::variant_size_v<Sample>;
+template <class S>
+constexpr bool kByPointer = IndexIn<const S*, Sample>::value < kSampleTypes;
+}  // namespace detail
+
+// The sample type S, held by value or by pointer.
+template <class S>
+constexpr SampleType sample_type() {
+  constexpr size_t i = detail::kByPointer<S> ? detail::IndexIn<const S*, Sample>::value
+                                             : detail::IndexIn<S, Sample>::value;
+  static_assert(i < detail::kSampleTypes && i > 0, "not a sample type of car_sim::Sample");
+  return {i};
+}
+
+// What a reader gets of a sample type S (Output::sample_of): the pointer where Sample holds S by pointer, else an
+// optional copy of the value; both empty when the output has none.
+template <class S>
+using SampleHandle = std::conditional_t<detail::kByPointer<S>, const S*, std::optional<S>>;
+
+// The samples one output hands over (Output::samples), and which of them each port reads.
+class SampleList {
+ public:
+  // A sample for every port of its type and of the types whose sample derives from it with nothing of its own (a
+  // camera frame's ImageSample serves its CameraInfo, DepthImage and DepthCloud ports too); or, with `port`, for the
+  // port of that name only (hector_imu's "bias"). frame: the output's frame it belongs to (a multicamera's side).
+  void add(Sample sample, std::string_view port = {}, size_t frame = 0) {
+    entries_.push_back({std::move(sample), port, frame});
+  }
+  // The sample a port of type `type`, named `port`, reading frame `frame`, takes: the one added for that port, else
+  // the first added for every port (made into `type` where it serves it); std::monostate when there is none.
+  Sample find(SampleType type, std::string_view port, size_t frame) const;
+  size_t size() const { return entries_.size(); }
+  void clear() { entries_.clear(); }
+
+ private:
+  struct Entry {
+    Sample sample;
+    std::string_view port;  // "" = every port
+    size_t frame = 0;
+  };
+  std::vector<Entry> entries_;
+};
+
+// ---- output ports -----------------------------------------------------------------------------------------
+
 // What an Image, CameraInfo, DepthImage or DepthCloud port needs besides its topic and frame, resolved from the
 // kind's schema (gazebo_ros_camera_utils' keys).
 struct ImagePortSettings {
@@ -195,25 +382,36 @@ struct ImagePortSettings {
 // Whether a sample's transform also goes out on TF, before or after its message (as each upstream file orders it).
 enum class TfOrder { None, Before, After };
 
+// How a skin writes a port's frames: gazebo_plugins' tf_prefix rules, each file's own (docs/COMPAT-spawn.md rule
+// 4). car's ROS node applies them in one place (src/ros/frames.cpp).
+enum class FrameRule {
+  // both frames tf::resolve(tf_prefix, name), tf_prefix searched upwards from the port's namespace
+  // (tf::getPrefixParam): the drives' GazeboRos::resolveTF, the laser, camera_utils
+  PrefixSearched,
+  // header.frame_id only tf::resolve(tf_prefix, frame), tf_prefix read in the namespace itself
+  // (getParam("tf_prefix")): p3d, f3d, ft_sensor, range, bumper, block_laser; the child frame as written
+  PrefixHere,
+  // no tf_prefix: the frame loses its leading '/'s, the child frame as written (the IMUs, hector's sensors,
+  // velodyne, hand_of_god)
+  NoPrefix,
+  // both frames exactly as written (ros_controllers)
+  AsWritten,
+};
+
 // An output of one plug-in instance, resolved.
 struct OutputPort {
   std::string name;            // the kind's name for it, e.g. "odom"
-  SampleType type = SampleType::Odometry;
+  SampleType type = sample_type<OdometrySample>();
   std::string topic;           // absolute; "" = no message (an Odometry port may still send its TF)
   uint32_t queue = 1;          // the publisher's queue length, as upstream
   std::string ns;              // the plug-in's namespace: where a ROS skin looks tf_prefix up (gazebo_ros resolveTF)
   std::string frame;           // header.frame_id as written (a ROS skin prefixes it with tf_prefix)
   std::string child_frame;     // child_frame_id as written
-  // false: no tf_prefix; the frame only loses its leading '/'s and the child frame stays as written (p3d)
-  bool tf_prefix = true;
-  bool frames_as_written = false;  // both frames exactly as written, no tf_prefix (ros_controllers)
+  FrameRule frame_rule = FrameRule::PrefixSearched;  // how a skin writes frame and child_frame
   bool with_effort = false;        // JointStates: each joint's effort too (joint_state_controller)
   TfOrder tf = TfOrder::None;  // Odometry: also the transform frame -> child_frame
   bool planar_position = false;  // Odometry: the message's position.z stays 0, the TF keeps it (skid steer, planar
                                  // move: upstream's publishOdometry fills x and y only)
-  // header.frame_id only = tf::resolve(the tf_prefix parameter read in the plug-in's namespace, not searched
-  // upwards, frame); the child frame as written (p3d, f3d, ft_sensor: rosnode_->getParam("tf_prefix"))
-  bool frame_prefix_here = false;
   std::array<double, 6> pose_covariance{};   // the diagonal (x, y, z, roll, pitch, yaw)
   std::array<double, 6> twist_covariance{};
   // Lazy parts (Plugin::set_parts): the parts of the output this port's messages need while it has subscribers;
@@ -273,86 +471,6 @@ class PeriodGate {
   int64_t last_ns_ = 0;    // [ns] sim time of the last message that went out
 };
 
-// ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
-// The samples of the sensors' families. A kind's output struct derives from its sample, so the fields keep their
-// names for the kind's own code, tests and Python fields. Frames and covariances are the port's.
-
-// A planar scan, sensor frame.
-struct LaserScanSample {
-  float angle_min = 0, angle_max = 0, angle_increment = 0;  // [rad]
-  float range_min = 0, range_max = 0;                       // [m]
-  std::vector<float> ranges;       // [m]; +inf: no hit within range_max
-  std::vector<float> intensities;  // laser_retro of the hit surface
-};
-
-// Points with one channel of intensities, sensor frame.
-struct PointCloudSample {
-  std::vector<float> points;       // x y z per point [m]
-  std::vector<float> intensities;  // one per point
-};
-
-// A multi-beam lidar's points with intensity and ring (beam index), sensor frame.
-struct LidarCloudSample {
-  std::vector<float> points;       // x y z per point [m]
-  std::vector<float> intensities;  // one per point
-  std::vector<uint16_t> rings;     // one per point, 0 = the lowest beam
-};
-
-// One range reading (sensor_msgs/Range's fields).
-struct RangeSample {
-  int radiation = 0;                   // 0 ULTRASOUND, 1 INFRARED
-  float field_of_view = 0;             // [rad]
-  float min_range = 0, max_range = 0;  // [m]
-  float range = 0;                     // [m]
-};
-
-// An inertial measurement, sensor frame.
-struct ImuSample {
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // sensor frame in the world
-  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();       // [rad/s]
-  Eigen::Vector3d linear_acceleration = Eigen::Vector3d::Zero();    // [m/s^2]
-};
-
-// A satellite fix.
-struct NavSatFixSample {
-  double latitude = 0, longitude = 0, altitude = 0;             // [deg], [deg], [m]
-  int status = 0, service = 0;                                  // sensor_msgs/NavSatStatus
-  Eigen::Vector3d position_variance = Eigen::Vector3d::Zero();  // [m^2] diagonal, DIAGONAL_KNOWN
-};
-
-// One pair of bodies in contact: gazebo_msgs/ContactState's fields.
-struct ContactPair {
-  std::string collision1, collision2;   // "model::link::collision" (this sensor's), "model::link" (the other)
-  std::vector<Wrench> wrenches;         // [N], world frame: force on collision1 at each point (torque 0)
-  Wrench total;                         // sum of wrenches
-  std::vector<Eigen::Vector3d> positions;  // [m], world frame
-  std::vector<Eigen::Vector3d> normals;    // unit, world frame, from collision2 into collision1
-  std::vector<double> depths;              // [m]
-};
-
-// ---- ros_control's controllers ----
-
-// control_msgs/JointControllerState of the PID joint controllers.
-struct ControllerStateSample {
-  double set_point = 0, process_value = 0, process_value_dot = 0, error = 0, time_step = 0, command = 0;
-  double p = 0, i = 0, d = 0, i_clamp = 0;  // the PID's gains and its integral clamp
-  bool antiwindup = false;
-};
-
-// joint_trajectory_controller's state: desired and actual per joint (the error is desired - actual).
-struct TrajectoryStateSample {
-  std::vector<std::string> joints;
-  std::vector<double> desired_position, desired_velocity, actual_position, actual_velocity;
-};
-
-// How a TrajectoryGoal ended.
-struct GoalResultSample {
-  enum class Status { Succeeded, Canceled, Aborted };
-  uint64_t goal = 0;  // the TrajectoryGoal's id
-  Status status = Status::Succeeded;
-  int error_code = 0;  // control_msgs/FollowJointTrajectoryResult's
-  std::string error_string;
-};
 
 // ---- calls: a plug-in's services (controller_manager's) ----
 

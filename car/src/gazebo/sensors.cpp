@@ -194,7 +194,7 @@ double RaySensor::Retro(const unsigned int _index) const {
 }
 
 void RaySensor::CarMeasure(const car_sim::Output* _sample) {
-  const car_sim::LaserScanSample* s = _sample ? _sample->laser_scan_sample() : nullptr;
+  const car_sim::LaserScanSample* s = _sample ? _sample->sample_of<car_sim::LaserScanSample>() : nullptr;
   if (!s) return;
   ranges.assign(s->ranges.begin(), s->ranges.end());
   retros.assign(s->intensities.begin(), s->intensities.end());
@@ -207,11 +207,12 @@ ignition::math::Vector3d ImuSensor::AngularVelocity() const { return angularVelo
 ignition::math::Vector3d ImuSensor::LinearAcceleration() const { return linearAcceleration; }
 
 void ImuSensor::CarMeasure(const car_sim::Output* _sample) {
-  car_sim::ImuSample s;
-  if (!_sample || !_sample->imu_sample("", &s)) return;
-  orientation = ignition::math::Quaterniond(s.orientation.w(), s.orientation.x(), s.orientation.y(), s.orientation.z());
-  angularVelocity = car_gazebo::ign(s.angular_velocity);
-  linearAcceleration = car_gazebo::ign(s.linear_acceleration);
+  const std::optional<car_sim::ImuSample> s = _sample ? _sample->sample_of<car_sim::ImuSample>() : std::nullopt;
+  if (!s) return;
+  orientation =
+      ignition::math::Quaterniond(s->orientation.w(), s->orientation.x(), s->orientation.y(), s->orientation.z());
+  angularVelocity = car_gazebo::ign(s->angular_velocity);
+  linearAcceleration = car_gazebo::ign(s->linear_acceleration);
 }
 
 // ---- ContactSensor: car's bumper kind's ContactPairs ----
@@ -234,7 +235,8 @@ std::string ContactSensor::GetCollisionName(unsigned int _index) const {
 }
 
 void ContactSensor::CarMeasure(const car_sim::Output* _sample) {
-  const std::vector<car_sim::ContactPair>* pairs = _sample ? _sample->contacts_sample() : nullptr;
+  const car_sim::ContactsSample* sample = _sample ? _sample->sample_of<car_sim::ContactsSample>() : nullptr;
+  const std::vector<car_sim::ContactPair>* pairs = sample ? &sample->states : nullptr;
   contacts = msgs::Contacts();
   const common::Time t = LastUpdateTime();
   contacts.mutable_time()->set_sec(t.sec);
@@ -279,9 +281,9 @@ const unsigned char* CameraSensor::ImageData() const { return camera->ImageData(
 rendering::CameraPtr CameraSensor::Camera() const { return camera; }
 
 void CameraSensor::CarMeasure(const car_sim::Output* _sample) {
-  car_sim::ImageSample s;
-  if (!_sample || !_sample->image_sample(0, &s) || !s.image) return;
-  camera->CarFrame(s.image, s.image_bytes);
+  const std::optional<car_sim::ImageSample> s = _sample ? _sample->sample_of<car_sim::ImageSample>() : std::nullopt;
+  if (!s || !s->image) return;
+  camera->CarFrame(s->image, s->image_bytes);
 }
 
 DepthCameraSensor::DepthCameraSensor(const car_sim::SensorSpec& _spec, const std::string& _world,
@@ -297,10 +299,10 @@ const float* DepthCameraSensor::DepthData() const { return depthCamera->DepthDat
 rendering::DepthCameraPtr DepthCameraSensor::DepthCamera() const { return depthCamera; }
 
 void DepthCameraSensor::CarMeasure(const car_sim::Output* _sample) {
-  car_sim::ImageSample s;
-  if (!_sample || !_sample->image_sample(0, &s)) return;
-  if (s.image) depthCamera->CarFrame(s.image, s.image_bytes);
-  if (s.depth) depthCamera->CarDepthFrame(s.depth);
+  const std::optional<car_sim::ImageSample> s = _sample ? _sample->sample_of<car_sim::ImageSample>() : std::nullopt;
+  if (!s) return;
+  if (s->image) depthCamera->CarFrame(s->image, s->image_bytes);
+  if (s->depth) depthCamera->CarDepthFrame(s->depth);
 }
 
 }  // namespace sensors

@@ -2,9 +2,11 @@
 // the resolve context.
 #include "car_sim/plugin.hpp"
 
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "car_sim/drive.hpp"
 #include "xml_util.hpp"
@@ -267,7 +269,7 @@ OutputPort odometry_port(const PluginConfig& c, const std::string& robot, const 
                          TfOrder tf, double cov_x, double cov_y, double cov_yaw) {
   OutputPort p;
   p.name = "odom";
-  p.type = SampleType::Odometry;
+  p.type = sample_type<OdometrySample>();
   p.ns = plugin_robot_namespace(c, robot);
   p.topic = resolve_topic(p.ns, c.text(topic_key));
   p.queue = queue;
@@ -281,7 +283,7 @@ OutputPort odometry_port(const PluginConfig& c, const std::string& robot, const 
 OutputPort joint_states_port(const PluginConfig& c, const std::string& robot, uint32_t queue) {
   OutputPort p;
   p.name = "joint_states";
-  p.type = SampleType::JointStates;
+  p.type = sample_type<JointStatesSample>();
   p.ns = plugin_robot_namespace(c, robot);
   p.topic = resolve_topic(p.ns, "joint_states");
   p.queue = queue;
@@ -291,7 +293,7 @@ OutputPort joint_states_port(const PluginConfig& c, const std::string& robot, ui
 OutputPort wheel_tf_port(const PluginConfig& c, const std::string& robot) {
   OutputPort p;
   p.name = "wheel_tf";
-  p.type = SampleType::JointTransforms;
+  p.type = sample_type<JointTransformsSample>();
   p.ns = plugin_robot_namespace(c, robot);
   return p;
 }
@@ -305,8 +307,68 @@ OutputPort sensor_port(const PluginConfig& c, const std::string& robot, const st
   p.topic = resolve_topic(p.ns, c.text(topic_key));
   p.queue = queue;
   p.frame = frame;
-  p.tf_prefix = false;
+  p.frame_rule = FrameRule::NoPrefix;
   return p;
+}
+
+namespace {
+
+// The sample types that derive from another with nothing of their own (CameraInfoSample from ImageSample): for each
+// alternative of Sample, the index of the one it derives from (0: none) and how to make it from that one.
+template <size_t To, size_t From>
+constexpr bool derives() {
+  using T = std::variant_alternative_t<To, Sample>;
+  using F = std::variant_alternative_t<From, Sample>;
+  if constexpr (To == From || From == 0 || !std::is_class_v<F> || !std::is_class_v<T>) return false;
+  else return std::is_base_of_v<F, T> && sizeof(F) == sizeof(T);
+}
+template <size_t To, size_t... Fs>
+constexpr size_t base_of(std::index_sequence<Fs...>) {
+  size_t base = 0;
+  ((base = base == 0 && derives<To, Fs>() ? Fs : base), ...);
+  return base;
+}
+template <size_t To>
+constexpr size_t kBase = base_of<To>(std::make_index_sequence<detail::kSampleTypes>());
+template <size_t To>
+Sample from_base(const Sample& s) {
+  if constexpr (kBase<To> == 0) {
+    return {};
+  } else {
+    std::variant_alternative_t<To, Sample> t;
+    static_cast<std::variant_alternative_t<kBase<To>, Sample>&>(t) = std::get<kBase<To>>(s);
+    return Sample(std::in_place_index<To>, std::move(t));
+  }
+}
+struct Derived {
+  size_t base;                         // 0: none
+  Sample (*make)(const Sample& base);  // the sample made from its base's
+};
+template <size_t... Ts>
+constexpr std::array<Derived, sizeof...(Ts)> derived_types(std::index_sequence<Ts...>) {
+  return {{{kBase<Ts>, &from_base<Ts>}...}};
+}
+constexpr auto kDerived = derived_types(std::make_index_sequence<detail::kSampleTypes>());
+
+}  // namespace
+
+Sample SampleList::find(SampleType type, std::string_view port, size_t frame) const {
+  const Derived& d = kDerived[type.index];
+  const Entry* any = nullptr;
+  const Entry* named = nullptr;
+  for (const Entry& e : entries_) {
+    const size_t i = e.sample.index();
+    if (i == 0 || (i != type.index && i != d.base) || e.frame != frame) continue;
+    if (e.port.empty()) {
+      if (!any) any = &e;
+    } else if (e.port == port) {
+      named = &e;
+      break;
+    }
+  }
+  const Entry* e = named ? named : any;
+  if (!e) return {};
+  return e->sample.index() == type.index ? e->sample : d.make(e->sample);
 }
 
 std::string strip_frame(const std::string& frame) {

@@ -84,11 +84,4 @@ class NodeContext {
   std::map<std::string, std::pair<const void*, GoalSink>> goal_sinks_;
 };
 
-// The tf_prefix parameter as gazebo_plugins' drives read it (tf::getPrefixParam on a node handle in the plug-in's
-// namespace: searchParam upwards from /NS); "" when none is set (docs/COMPAT-spawn.md rule 4).
-std::string tf_prefix_param(const std::string& ns);
-// The parameter tf_prefix in the namespace ns itself, not searched upwards ("" when unset), as p3d, f3d and
-// ft_sensor read it: NodeHandle(robotNamespace).getParam("tf_prefix").
-std::string tf_prefix_here(const std::string& ns);
-
 }  // namespace car_ros

@@ -77,13 +77,4 @@ inline std::string frame(const std::string& f) {
   return f.substr(i);
 }
 
-// gazebo_plugins' GazeboRos::resolveTF, which is Noetic tf's tf::resolve(tf_prefix, name): a name written with a
-// leading '/' loses that one '/' and takes no prefix; another gets "PREFIX/" in front when tf_prefix is set (the
-// prefix's own leading '/' dropped); with no prefix the name stays as written.
-inline std::string resolve_tf(const std::string& prefix, const std::string& name) {
-  if (!name.empty() && name[0] == '/') return name.substr(1);
-  if (prefix.empty()) return name;
-  return (prefix[0] == '/' ? prefix.substr(1) : prefix) + "/" + name;
-}
-
 }  // namespace car_ros

@@ -1,4 +1,5 @@
-// The output half of the ROS bridge: samples -> messages, by sample type (the camera types: outputs_image.cpp).
+// The output half of the ROS bridge: one converter per sample type, beside its to_msg (the camera types:
+// outputs_image.cpp), and the table OutputPorts picks them from by a port's type.
 #include "outputs.hpp"
 
 #include <control_msgs/JointControllerState.h>
@@ -18,14 +19,19 @@
 #include <sensor_msgs/Range.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cstring>
 #include <map>
 #include <sstream>
+#include <type_traits>
+#include <utility>
 
 #include "conversions.hpp"
 
 namespace car_ros {
+
+using car_sim::Sample;
 
 namespace {
 
@@ -44,7 +50,12 @@ void set_debug_level(const car_sim::PluginConfig& c) {
   if (ros::console::set_logger_level(ROSCONSOLE_DEFAULT_NAME, it->second)) ros::console::notifyLoggerLevelsChanged();
 }
 
-// ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
+// A port with a publisher of M and nothing else: the log line's words are its topic and frame.
+template <class M>
+std::string advertise_topic(OutPort& p, const SetupContext& c) {
+  p.pub = c.node.advertise<M>(p.port.topic, p.port.queue);
+  return p.pub.getTopic() + (p.frames.frame.empty() ? std::string() : " (frame " + p.frames.frame + ")");
+}
 
 geometry_msgs::Vector3 to_vector3(const Eigen::Vector3d& v) {
   geometry_msgs::Vector3 m;
@@ -61,6 +72,44 @@ geometry_msgs::Wrench to_wrench(const car_sim::Wrench& w) {
   return m;
 }
 
+// header and child frame the port's; covariances the port's diagonals; the orientation the kind's own when it has one
+nav_msgs::Odometry to_msg(const car_sim::OdometrySample& o, const OutPort& p, const ros::Time& stamp) {
+  nav_msgs::Odometry m;
+  m.header.stamp = stamp;
+  m.header.frame_id = p.frames.frame;
+  m.child_frame_id = p.frames.child_frame;
+  m.pose.pose = to_pose(o.pose);
+  if (p.port.planar_position) m.pose.pose.position.z = 0.0;
+  if (o.orientation) {
+    m.pose.pose.orientation.x = o.orientation->x();
+    m.pose.pose.orientation.y = o.orientation->y();
+    m.pose.pose.orientation.z = o.orientation->z();
+    m.pose.pose.orientation.w = o.orientation->w();
+  }
+  m.twist.twist = to_twist(o.linear, o.angular);
+  for (int i = 0; i < 6; ++i) {
+    m.pose.covariance[i * 7] = p.port.pose_covariance[i];
+    m.twist.covariance[i * 7] = p.port.twist_covariance[i];
+  }
+  return m;
+}
+
+sensor_msgs::JointState to_msg(const car_sim::JointStatesSample& s, bool with_effort) {
+  sensor_msgs::JointState js;
+  const std::vector<car_sim::JointState>& joints = *s.joints;
+  js.name.reserve(joints.size());
+  js.position.reserve(joints.size());
+  js.velocity.reserve(joints.size());
+  for (const auto& j : joints) {
+    js.name.push_back(j.name);
+    js.position.push_back(j.position);
+    js.velocity.push_back(j.velocity);
+  }
+  if (with_effort && s.efforts) js.effort = *s.efforts;
+  return js;
+}
+
+// ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
 sensor_msgs::LaserScan to_msg(const car_sim::LaserScanSample& s) {
   sensor_msgs::LaserScan m;
   m.angle_min = s.angle_min;
@@ -186,18 +235,296 @@ gazebo_msgs::ContactsState to_msg(const std::vector<car_sim::ContactPair>& state
   return m;
 }
 
+
+// ---- ros_control's controllers ----
+
+control_msgs::JointControllerState to_msg(const car_sim::ControllerStateSample& s) {
+  control_msgs::JointControllerState m;
+  m.set_point = s.set_point;
+  m.process_value = s.process_value;
+  m.process_value_dot = s.process_value_dot;
+  m.error = s.error;
+  m.time_step = s.time_step;
+  m.command = s.command;
+  m.p = s.p;
+  m.i = s.i;
+  m.d = s.d;
+  m.i_clamp = s.i_clamp;
+  m.antiwindup = s.antiwindup;
+  return m;
+}
+
+// the error is desired - actual, per joint
+control_msgs::JointTrajectoryControllerState to_msg(const car_sim::TrajectoryStateSample& s) {
+  control_msgs::JointTrajectoryControllerState m;
+  m.joint_names = s.joints;
+  m.desired.positions = s.desired_position;
+  m.desired.velocities = s.desired_velocity;
+  m.actual.positions = s.actual_position;
+  m.actual.velocities = s.actual_velocity;
+  for (size_t k = 0; k < s.joints.size(); ++k) {
+    m.error.positions.push_back(s.desired_position[k] - s.actual_position[k]);
+    m.error.velocities.push_back(s.desired_velocity[k] - s.actual_velocity[k]);
+  }
+  return m;
+}
+
 }  // namespace
+
+// ---- the converters, one per sample type ----------------------------------------------------------------------
+
+template <>
+std::string advertise<car_sim::OdometrySample>(OutPort& p, const SetupContext& c) {
+  const car_sim::OutputPort& op = p.port;
+  if (!op.topic.empty()) {
+    p.pub = c.node.advertise<nav_msgs::Odometry>(op.topic, op.queue);
+  } else {
+    ROS_WARN("car: %s: %s: no odometry topic at all (like gazebo_ros with publishTf false)", c.plugin.robot.c_str(),
+             c.plugin.config.name.c_str());
+  }
+  return "odometry " + (op.topic.empty() ? std::string("(none)") : op.topic) + " (" + p.frames.frame + " -> " +
+         p.frames.child_frame + (op.tf != car_sim::TfOrder::None ? ", TF" : "") + ")";
+}
+// the message, and its transform on TF before or after it
+template <>
+void convert<car_sim::OdometrySample>(OutPort& p, const car_sim::OdometrySample& o, PublishContext& c) {
+  nav_msgs::Odometry m = to_msg(o, p, c.stamp);
+  // the transform is made before the odometry is moved to the publishing thread
+  geometry_msgs::TransformStamped t;
+  if (p.port.tf != car_sim::TfOrder::None) {
+    t.header = m.header;
+    t.child_frame_id = m.child_frame_id;
+    t.transform = to_transform(o.pose);
+    t.transform.rotation = m.pose.pose.orientation;
+  }
+  if (p.port.tf == car_sim::TfOrder::Before) c.node.send_tf(std::move(t));
+  if (p.pub) c.node.publish(p.pub, std::move(m));
+  if (p.port.tf == car_sim::TfOrder::After) c.node.send_tf(std::move(t));
+}
+
+template <>
+std::string advertise<car_sim::JointStatesSample>(OutPort& p, const SetupContext& c) {
+  p.pub = c.node.advertise<sensor_msgs::JointState>(p.port.topic, p.port.queue);
+  return "joint states " + p.port.topic;
+}
+// stamped, no frame
+template <>
+void convert<car_sim::JointStatesSample>(OutPort& p, const car_sim::JointStatesSample& s, PublishContext& c) {
+  sensor_msgs::JointState js = to_msg(s, p.port.with_effort);
+  js.header.stamp = c.stamp;
+  c.node.publish(p.pub, std::move(js));
+}
+
+template <>
+std::string advertise<car_sim::JointTransformsSample>(OutPort&, const SetupContext&) {
+  return "wheel TF";
+}
+// fix: each child link relative to its parent link (upstream drives publish the wheels relative to the odometry
+// frame, or name the child frame after the joint)
+template <>
+void convert<car_sim::JointTransformsSample>(OutPort& p, const car_sim::JointTransformsSample& s, PublishContext& c) {
+  for (const auto& j : *s.joints) {
+    const car_sim::Joint* joint = c.model.find_joint(j.name);
+    geometry_msgs::TransformStamped w;
+    w.header.stamp = c.stamp;
+    w.header.frame_id = p.frames.header_frame(joint->parent);
+    w.child_frame_id = p.frames.header_frame(joint->child);
+    Eigen::Isometry3d T = joint->origin;
+    T.rotate(Eigen::AngleAxisd(j.position, joint->axis));
+    w.transform = to_transform(T);
+    c.node.send_tf(std::move(w));
+  }
+}
+
+// ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
+
+template <>
+std::string advertise<car_sim::LaserScanSample>(OutPort& p, const SetupContext& c) {
+  return advertise_topic<sensor_msgs::LaserScan>(p, c);
+}
+template <>
+void convert<car_sim::LaserScanSample>(OutPort& p, const car_sim::LaserScanSample& s, PublishContext& c) {
+  send(p, to_msg(s), c);
+}
+
+template <>
+std::string advertise<car_sim::PointCloudSample>(OutPort& p, const SetupContext& c) {
+  return advertise_topic<sensor_msgs::PointCloud>(p, c);
+}
+template <>
+void convert<car_sim::PointCloudSample>(OutPort& p, const car_sim::PointCloudSample& s, PublishContext& c) {
+  send(p, to_msg(s), c);
+}
+
+template <>
+std::string advertise<car_sim::LidarCloudSample>(OutPort& p, const SetupContext& c) {
+  return advertise_topic<sensor_msgs::PointCloud2>(p, c);
+}
+template <>
+void convert<car_sim::LidarCloudSample>(OutPort& p, const car_sim::LidarCloudSample& s, PublishContext& c) {
+  send(p, to_msg(s), c);
+}
+
+template <>
+std::string advertise<car_sim::RangeSample>(OutPort& p, const SetupContext& c) {
+  return advertise_topic<sensor_msgs::Range>(p, c);
+}
+// at most one per min_period of sim time (PeriodGate: upstream's rule)
+template <>
+void convert<car_sim::RangeSample>(OutPort& p, const car_sim::RangeSample& s, PublishContext& c) {
+  if (!p.gate.due(static_cast<int64_t>(c.stamp.toNSec()))) return;
+  send(p, to_msg(s), c);
+}
+
+template <>
+std::string advertise<car_sim::ImuSample>(OutPort& p, const SetupContext& c) {
+  return advertise_topic<sensor_msgs::Imu>(p, c);
+}
+template <>
+void convert<car_sim::ImuSample>(OutPort& p, const car_sim::ImuSample& s, PublishContext& c) {
+  send(p, to_msg(s, p.port), c);
+}
+
+template <>
+std::string advertise<car_sim::NavSatFixSample>(OutPort& p, const SetupContext& c) {
+  return advertise_topic<sensor_msgs::NavSatFix>(p, c);
+}
+template <>
+void convert<car_sim::NavSatFixSample>(OutPort& p, const car_sim::NavSatFixSample& s, PublishContext& c) {
+  send(p, to_msg(s), c);
+}
+
+template <>
+std::string advertise<car_sim::Vector3Sample>(OutPort& p, const SetupContext& c) {
+  return advertise_topic<geometry_msgs::Vector3Stamped>(p, c);
+}
+template <>
+void convert<car_sim::Vector3Sample>(OutPort& p, const car_sim::Vector3Sample& s, PublishContext& c) {
+  geometry_msgs::Vector3Stamped m;
+  m.vector = to_vector3(s.vector);
+  send(p, std::move(m), c);
+}
+
+template <>
+std::string advertise<car_sim::MagneticFieldSample>(OutPort& p, const SetupContext& c) {
+  return advertise_topic<sensor_msgs::MagneticField>(p, c);
+}
+template <>
+void convert<car_sim::MagneticFieldSample>(OutPort& p, const car_sim::MagneticFieldSample& s, PublishContext& c) {
+  sensor_msgs::MagneticField m;
+  m.magnetic_field = to_vector3(s.vector);
+  send(p, std::move(m), c);
+}
+
+template <>
+std::string advertise<car_sim::WrenchSample>(OutPort& p, const SetupContext& c) {
+  return advertise_topic<geometry_msgs::WrenchStamped>(p, c);
+}
+template <>
+void convert<car_sim::WrenchSample>(OutPort& p, const car_sim::WrenchSample& s, PublishContext& c) {
+  geometry_msgs::WrenchStamped m;
+  m.wrench = to_wrench(s.wrench);
+  send(p, std::move(m), c);
+}
+
+template <>
+std::string advertise<car_sim::ContactsSample>(OutPort& p, const SetupContext& c) {
+  return advertise_topic<gazebo_msgs::ContactsState>(p, c);
+}
+template <>
+void convert<car_sim::ContactsSample>(OutPort& p, const car_sim::ContactsSample& s, PublishContext& c) {
+  c.node.publish(p.pub, to_msg(s.states, c.header));
+}
+
+template <>
+std::string advertise<car_sim::TransformSample>(OutPort& p, const SetupContext&) {
+  return "TF " + p.frames.frame + " -> " + p.frames.child_frame;
+}
+template <>
+void convert<car_sim::TransformSample>(OutPort& p, const car_sim::TransformSample& s, PublishContext& c) {
+  geometry_msgs::TransformStamped t;
+  t.header = c.header;
+  t.child_frame_id = p.frames.child_frame;
+  t.transform = to_transform(s.pose);
+  c.node.send_tf(std::move(t));
+}
+
+// ---- ros_control's controllers ----
+
+template <>
+std::string advertise<car_sim::ControllerStateSample>(OutPort& p, const SetupContext& c) {
+  return advertise_topic<control_msgs::JointControllerState>(p, c);
+}
+template <>
+void convert<car_sim::ControllerStateSample>(OutPort& p, const car_sim::ControllerStateSample& s, PublishContext& c) {
+  send(p, to_msg(s), c);
+}
+
+template <>
+std::string advertise<car_sim::TrajectoryStateSample>(OutPort& p, const SetupContext& c) {
+  return advertise_topic<control_msgs::JointTrajectoryControllerState>(p, c);
+}
+template <>
+void convert<car_sim::TrajectoryStateSample>(OutPort& p, const car_sim::TrajectoryStateSample& s, PublishContext& c) {
+  send(p, to_msg(s), c);
+}
+
+// no topic of its own: the action server of the input port on the same namespace answers
+template <>
+std::string advertise<car_sim::GoalResultSample>(OutPort&, const SetupContext&) {
+  return "";
+}
+template <>
+void convert<car_sim::GoalResultSample>(OutPort& p, const car_sim::GoalResultSample& s, PublishContext& c) {
+  c.node.finish_goal(p.port.topic, s);
+}
+
+// ---- the table ------------------------------------------------------------------------------------------------
+
+namespace {
+
+// A sample type's converter, by the index of its alternative in car_sim::Sample.
+struct Converter {
+  std::string (*advertise)(OutPort& p, const SetupContext& c);
+  void (*convert)(OutPort& p, const Sample& s, PublishContext& c);
+};
+
+template <size_t I>
+Converter converter_of() {
+  using A = std::variant_alternative_t<I, Sample>;
+  using S = std::remove_const_t<std::remove_pointer_t<A>>;
+  const auto convert_one = [](OutPort& p, const Sample& s, PublishContext& c) {
+    if constexpr (std::is_pointer_v<A>) {
+      if (const A sample = std::get<I>(s)) convert<S>(p, *sample, c);
+    } else {
+      convert<S>(p, std::get<I>(s), c);
+    }
+  };
+  return {&advertise<S>, convert_one};
+}
+
+// Every alternative's but std::monostate's (index 0: no sample)
+template <size_t... Is>
+std::array<Converter, sizeof...(Is) + 1> converters(std::index_sequence<Is...>) {
+  return {{{nullptr, nullptr}, converter_of<Is + 1>()...}};
+}
+
+const std::array<Converter, car_sim::detail::kSampleTypes> kConverters =
+    converters(std::make_index_sequence<car_sim::detail::kSampleTypes - 1>());
+
+}  // namespace
+
+// ---- OutputPorts ----------------------------------------------------------------------------------------------
 
 std::string OutputPorts::setup(const car_sim::PluginInfo& plugin, const car_sim::RobotInfo& robot, NodeContext& node) {
   model_ = &robot.model;
   std::string offers;
-  auto add = [&offers](const std::string& s) { offers += (offers.empty() ? "" : ", ") + s; };
-  using T = car_sim::SampleType;
-  std::vector<Port> old = std::move(ports_);
+  const SetupContext c{plugin, node};
+  std::vector<OutPort> old = std::move(ports_);
   ports_.clear();
   for (const car_sim::OutputPort& op : plugin.outputs) {
     // called again when the instance's ports change: a port of the same name, type and topic keeps its publisher
-    auto same = std::find_if(old.begin(), old.end(), [&op](const Port& o) {
+    auto same = std::find_if(old.begin(), old.end(), [&op](const OutPort& o) {
       return o.port.name == op.name && o.port.type == op.type && o.port.topic == op.topic;
     });
     if (same != old.end()) {
@@ -205,70 +532,13 @@ std::string OutputPorts::setup(const car_sim::PluginInfo& plugin, const car_sim:
       old.erase(same);
       continue;
     }
-    Port p;
+    OutPort p;
     p.port = op;
-    // a throttled publisher's period [s] (range's updateRate, camera_info's)
-    p.gate = car_sim::PeriodGate(op.type == T::CameraInfo ? op.image.period : op.min_period);
-    // GazeboRos::resolveTF: tf_prefix from the plug-in's namespace (docs/COMPAT-spawn.md rule 4)
-    if (op.frames_as_written) {
-      p.frame = op.frame;
-      p.child_frame = op.child_frame;
-    } else if (op.frame_prefix_here) {
-      p.prefix = tf_prefix_here(op.ns);
-      p.frame = resolve_tf(p.prefix, op.frame);
-      p.child_frame = op.child_frame;
-    } else if (op.tf_prefix) {
-      p.prefix = tf_prefix_param(op.ns);
-      p.frame = resolve_tf(p.prefix, op.frame);
-      p.child_frame = resolve_tf(p.prefix, op.child_frame);
-    } else {
-      p.frame = frame(op.frame);
-      p.child_frame = op.child_frame;
-    }
-    switch (op.type) {
-      case T::Odometry:
-        if (!op.topic.empty()) p.pub = node.advertise<nav_msgs::Odometry>(op.topic, op.queue);
-        else
-          ROS_WARN("car: %s: %s: no odometry topic at all (like gazebo_ros with publishTf false)", plugin.robot.c_str(),
-                   plugin.config.name.c_str());
-        add("odometry " + (op.topic.empty() ? std::string("(none)") : op.topic) + " (" + p.frame + " -> " +
-            p.child_frame + (op.tf != car_sim::TfOrder::None ? ", TF" : "") + ")");
-        break;
-      case T::JointStates:
-        p.pub = node.advertise<sensor_msgs::JointState>(op.topic, op.queue);
-        add("joint states " + op.topic);
-        break;
-      case T::JointTransforms: add("wheel TF"); break;
-      case T::Image:
-      case T::CameraInfo:
-      case T::DepthImage:
-      case T::DepthCloud: add(setup_image(p, node)); break;
-      // ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
-      case T::LaserScan: p.pub = node.advertise<sensor_msgs::LaserScan>(op.topic, op.queue); break;
-      case T::PointCloud: p.pub = node.advertise<sensor_msgs::PointCloud>(op.topic, op.queue); break;
-      case T::LidarCloud: p.pub = node.advertise<sensor_msgs::PointCloud2>(op.topic, op.queue); break;
-      case T::Range: p.pub = node.advertise<sensor_msgs::Range>(op.topic, op.queue); break;
-      case T::Imu: p.pub = node.advertise<sensor_msgs::Imu>(op.topic, op.queue); break;
-      case T::NavSatFix: p.pub = node.advertise<sensor_msgs::NavSatFix>(op.topic, op.queue); break;
-      case T::Vector3: p.pub = node.advertise<geometry_msgs::Vector3Stamped>(op.topic, op.queue); break;
-      case T::MagneticField: p.pub = node.advertise<sensor_msgs::MagneticField>(op.topic, op.queue); break;
-      case T::Wrench: p.pub = node.advertise<geometry_msgs::WrenchStamped>(op.topic, op.queue); break;
-      case T::Contacts: p.pub = node.advertise<gazebo_msgs::ContactsState>(op.topic, op.queue); break;
-      case T::Transform: add("TF " + p.frame + " -> " + p.child_frame); break;
-      // ---- ros_control's controllers ----
-      case T::ControllerState:
-        p.pub = node.advertise<control_msgs::JointControllerState>(op.topic, op.queue);
-        break;
-      case T::TrajectoryState:
-        p.pub = node.advertise<control_msgs::JointTrajectoryControllerState>(op.topic, op.queue);
-        break;
-      case T::GoalResult: break;  // the action server of the input port on the same namespace answers
-    }
-    // the sensors' ports: the topic and frame for the log line (the cameras' setup_image says its own words)
-    const bool image = op.type == T::Image || op.type == T::CameraInfo || op.type == T::DepthImage ||
-                       op.type == T::DepthCloud;
-    if (p.pub && op.type != T::Odometry && op.type != T::JointStates && !image)
-      add(p.pub.getTopic() + (p.frame.empty() ? std::string() : " (frame " + p.frame + ")"));
+    // a throttled publisher's period [s] (range's updateRate; a CameraInfo port sets its own)
+    p.gate = car_sim::PeriodGate(op.min_period);
+    p.frames = port_frames(op, tf_prefix_param);
+    const std::string words = kConverters[op.type.index].advertise(p, c);
+    if (!words.empty()) offers += (offers.empty() ? "" : ", ") + words;
     ports_.push_back(std::move(p));
   }
   set_debug_level(plugin.config);
@@ -276,10 +546,10 @@ std::string OutputPorts::setup(const car_sim::PluginInfo& plugin, const car_sim:
 }
 
 bool OutputPorts::listened() const {
-  for (const Port& p : ports_) {
+  for (const OutPort& p : ports_) {
     if (p.pub && p.pub.getNumSubscribers() > 0) return true;
     // TF has no subscriber count: a port that only sends a transform always has listeners
-    if (p.port.type == car_sim::SampleType::Transform) return true;
+    if (p.port.type == car_sim::sample_type<car_sim::TransformSample>()) return true;
   }
   return false;
 }
@@ -287,7 +557,7 @@ bool OutputPorts::listened() const {
 uint32_t OutputPorts::parts() const {
   uint32_t taken = 0, idle = 0;
   bool any = false;
-  for (const Port& p : ports_) {
+  for (const OutPort& p : ports_) {
     any = any || p.port.parts != 0 || p.port.idle_parts != 0;
     idle |= p.port.idle_parts;
     if (p.pub && p.pub.getNumSubscribers() > 0) taken |= p.port.parts;
@@ -297,192 +567,19 @@ uint32_t OutputPorts::parts() const {
 }
 
 void OutputPorts::publish(std::shared_ptr<const car_sim::Output> owned, NodeContext& node) {
-  const car_sim::Output& out = *owned;
-  const ros::Time stamp = node.stamp(out.tick);
-  std_msgs::Header header;
-  header.stamp = stamp;
-  car_sim::OdometrySample o;
-  const bool has_odometry = out.odometry_sample(&o);
-  static const std::vector<car_sim::JointState> kNone;
-  const std::vector<car_sim::JointState>* sample = out.joint_states_sample();
-  const std::vector<car_sim::JointState>& joints = sample ? *sample : kNone;
-  using T = car_sim::SampleType;
-  for (Port& p : ports_) {
+  samples_.clear();
+  owned->samples(samples_);
+  PublishContext c{owned, *model_, node.stamp(owned->tick), {}, node};
+  c.header.stamp = c.stamp;
+  for (OutPort& p : ports_) {
     // an output for one port (a controller's) goes out on that port only
-    if (!out.port.empty() && out.port != p.port.name) continue;
-    header.frame_id = p.frame;
-    switch (p.port.type) {
-      case T::Odometry: {
-        if (!has_odometry) break;
-        nav_msgs::Odometry m;
-        m.header.stamp = stamp;
-        m.header.frame_id = p.frame;
-        m.child_frame_id = p.child_frame;
-        m.pose.pose = to_pose(o.pose);
-        if (p.port.planar_position) m.pose.pose.position.z = 0.0;
-        if (o.orientation) {
-          m.pose.pose.orientation.x = o.orientation->x();
-          m.pose.pose.orientation.y = o.orientation->y();
-          m.pose.pose.orientation.z = o.orientation->z();
-          m.pose.pose.orientation.w = o.orientation->w();
-        }
-        m.twist.twist = to_twist(o.linear, o.angular);
-        for (int i = 0; i < 6; ++i) {
-          m.pose.covariance[i * 7] = p.port.pose_covariance[i];
-          m.twist.covariance[i * 7] = p.port.twist_covariance[i];
-        }
-        // the transform is made before the odometry is moved to the publishing thread
-        geometry_msgs::TransformStamped t;
-        if (p.port.tf != car_sim::TfOrder::None) {
-          t.header = m.header;
-          t.child_frame_id = m.child_frame_id;
-          t.transform = to_transform(o.pose);
-          t.transform.rotation = m.pose.pose.orientation;
-        }
-        if (p.port.tf == car_sim::TfOrder::Before) node.send_tf(std::move(t));
-        if (p.pub) node.publish(p.pub, std::move(m));
-        if (p.port.tf == car_sim::TfOrder::After) node.send_tf(std::move(t));
-        break;
-      }
-      case T::JointStates: {
-        if (!sample) break;
-        sensor_msgs::JointState js;
-        js.header.stamp = stamp;
-        js.name.reserve(joints.size());
-        js.position.reserve(joints.size());
-        js.velocity.reserve(joints.size());
-        for (const auto& j : joints) {
-          js.name.push_back(j.name);
-          js.position.push_back(j.position);
-          js.velocity.push_back(j.velocity);
-        }
-        if (p.port.with_effort)
-          if (const std::vector<double>* e = out.joint_efforts_sample()) js.effort = *e;
-        node.publish(p.pub, std::move(js));
-        break;
-      }
-      case T::JointTransforms:
-        // fix: each child link relative to its parent link (upstream drives publish the wheels relative to the
-        // odometry frame, or name the child frame after the joint)
-        for (const auto& j : joints) {
-          const car_sim::Joint* joint = model_->find_joint(j.name);
-          geometry_msgs::TransformStamped w;
-          w.header.stamp = stamp;
-          w.header.frame_id = resolve_tf(p.prefix, joint->parent);
-          w.child_frame_id = resolve_tf(p.prefix, joint->child);
-          Eigen::Isometry3d T = joint->origin;
-          T.rotate(Eigen::AngleAxisd(j.position, joint->axis));
-          w.transform = to_transform(T);
-          node.send_tf(std::move(w));
-        }
-        break;
-      case T::Image:
-      case T::CameraInfo:
-      case T::DepthImage:
-      case T::DepthCloud: publish_image(p, owned, stamp, node); break;
-      // ---- sensors: laser, range, imu, gps, magnetic, wrench, contacts, pose ----
-      case T::LaserScan:
-        if (const auto* s = out.laser_scan_sample()) publish(p, to_msg(*s), header, node);
-        break;
-      case T::PointCloud:
-        if (const auto* s = out.point_cloud_sample()) publish(p, to_msg(*s), header, node);
-        break;
-      case T::LidarCloud:
-        if (const auto* s = out.lidar_cloud_sample()) publish(p, to_msg(*s), header, node);
-        break;
-      case T::Range: {
-        const auto* s = out.range_sample();
-        if (!s) break;
-        // at most one per min_period of sim time (PeriodGate: upstream's rule)
-        if (!p.gate.due(static_cast<int64_t>(stamp.toNSec()))) break;
-        publish(p, to_msg(*s), header, node);
-        break;
-      }
-      case T::Imu: {
-        car_sim::ImuSample s;
-        if (out.imu_sample(p.port.name, &s)) publish(p, to_msg(s, p.port), header, node);
-        break;
-      }
-      case T::NavSatFix:
-        if (const auto* s = out.nav_sat_fix_sample()) publish(p, to_msg(*s), header, node);
-        break;
-      case T::Vector3: {
-        Eigen::Vector3d v;
-        if (!out.vector3_sample(&v)) break;
-        geometry_msgs::Vector3Stamped m;
-        m.vector = to_vector3(v);
-        publish(p, std::move(m), header, node);
-        break;
-      }
-      case T::MagneticField: {
-        Eigen::Vector3d v;
-        if (!out.vector3_sample(&v)) break;
-        sensor_msgs::MagneticField m;
-        m.magnetic_field = to_vector3(v);
-        publish(p, std::move(m), header, node);
-        break;
-      }
-      case T::Wrench: {
-        const car_sim::Wrench* w = out.wrench_sample();
-        if (!w) break;
-        geometry_msgs::WrenchStamped m;
-        m.wrench = to_wrench(*w);
-        publish(p, std::move(m), header, node);
-        break;
-      }
-      case T::Contacts:
-        if (const auto* s = out.contacts_sample()) node.publish(p.pub, to_msg(*s, header));
-        break;
-      case T::Transform: {
-        Eigen::Isometry3d pose;
-        if (!out.pose_sample(&pose)) break;
-        geometry_msgs::TransformStamped t;
-        t.header = header;
-        t.child_frame_id = p.child_frame;
-        t.transform = to_transform(pose);
-        node.send_tf(std::move(t));
-        break;
-      }
-      // ---- ros_control's controllers ----
-      case T::ControllerState: {
-        const car_sim::ControllerStateSample* s = out.controller_state_sample();
-        if (!s) break;
-        control_msgs::JointControllerState m;
-        m.set_point = s->set_point;
-        m.process_value = s->process_value;
-        m.process_value_dot = s->process_value_dot;
-        m.error = s->error;
-        m.time_step = s->time_step;
-        m.command = s->command;
-        m.p = s->p;
-        m.i = s->i;
-        m.d = s->d;
-        m.i_clamp = s->i_clamp;
-        m.antiwindup = s->antiwindup;
-        publish(p, std::move(m), header, node);
-        break;
-      }
-      case T::TrajectoryState: {
-        const car_sim::TrajectoryStateSample* s = out.trajectory_state_sample();
-        if (!s) break;
-        control_msgs::JointTrajectoryControllerState m;
-        m.joint_names = s->joints;
-        m.desired.positions = s->desired_position;
-        m.desired.velocities = s->desired_velocity;
-        m.actual.positions = s->actual_position;
-        m.actual.velocities = s->actual_velocity;
-        for (size_t k = 0; k < s->joints.size(); ++k) {
-          m.error.positions.push_back(s->desired_position[k] - s->actual_position[k]);
-          m.error.velocities.push_back(s->desired_velocity[k] - s->actual_velocity[k]);
-        }
-        publish(p, std::move(m), header, node);
-        break;
-      }
-      case T::GoalResult:
-        if (const car_sim::GoalResultSample* s = out.goal_result_sample()) node.finish_goal(p.port.topic, *s);
-        break;
-    }
+    if (!owned->port.empty() && owned->port != p.port.name) continue;
+    const Sample s = samples_.find(p.port.type, p.port.name, p.port.image.frame);
+    if (s.index() == 0) continue;
+    c.header.frame_id = p.frames.frame;
+    kConverters[s.index()].convert(p, s, c);
   }
+  samples_.clear();
 }
 
 }  // namespace car_ros

@@ -189,7 +189,7 @@ TEST_F(GazeboSensors, RaySensorHasTheNoiseOfCarsLaser) {
   own.step(100);
   const OutputQueue outs = own.take_outputs();
   ASSERT_EQ(outs.size(), 1u);
-  const LaserScanSample* scan = outs[0]->laser_scan_sample();
+  const LaserScanSample* scan = outs[0]->sample_of<LaserScanSample>();
   ASSERT_NE(scan, nullptr);
   for (int i = 0; i < 3; ++i) EXPECT_EQ(probe("front/range" + std::to_string(i)), scan->ranges[i]) << i;
   EXPECT_NE(probe("front/range1"), 1.75f);  // the noise is there

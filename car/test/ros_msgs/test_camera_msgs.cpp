@@ -42,7 +42,7 @@ template <class View>
 View view(const std::shared_ptr<car_sim::CameraOut>& o) {
   View v;
   v.owner = o;
-  o->image_sample(0, &v.sample);
+  v.sample = o->frame_view();
   v.frame = "support_depth";
   v.stamp = ros::Time(1, 234000000);
   return v;
@@ -115,8 +115,7 @@ namespace {
 // camera_info of the 4 x 3 frame (its own f = 2, cx = 1.5, cy = 1) through `port`, hackBaseline 0.1 m.
 sensor_msgs::CameraInfo info_through(car_sim::ImagePortSettings port) {
   auto o = frame("rgb8");
-  car_sim::ImageSample s;
-  o->image_sample(0, &s);
+  const car_sim::ImageSample s = o->frame_view();
   port.baseline = 0.1;
   return car_ros::camera_info(s, port, "cam", ros::Time(1, 0));
 }

@@ -22,9 +22,9 @@ std::vector<OutputPort> drive_ports() {
 TEST(WorldPorts, DiffDriveHasOdometryJointStatesAndWheelTf) {
   const auto ports = drive_ports();
   ASSERT_EQ(ports.size(), 3u);
-  EXPECT_EQ(ports[0].type, SampleType::Odometry);
-  EXPECT_EQ(ports[1].type, SampleType::JointStates);
-  EXPECT_EQ(ports[2].type, SampleType::JointTransforms);
+  EXPECT_EQ(ports[0].type, sample_type<OdometrySample>());
+  EXPECT_EQ(ports[1].type, sample_type<JointStatesSample>());
+  EXPECT_EQ(ports[2].type, sample_type<JointTransformsSample>());
 }
 
 TEST(WorldPorts, DiffDriveOdometryTopicFramesAndTf) {
@@ -51,7 +51,8 @@ TEST(WorldPorts, DiffDriveWheelJointStatesTopic) {
   EXPECT_EQ(p.queue, 10u);
 }
 
-// p3d, as the ROS node attaches it for ground truth: its frames untouched by tf_prefix, gaussianNoise 0.1 m giving
+// p3d, as the ROS node attaches it for ground truth: header.frame_id under the tf_prefix of its own namespace, the
+// child frame as written (p3d.cpp Load: getParam("tf_prefix")), gaussianNoise 0.1 m giving
 // the variance 0.01 on every diagonal entry of pose and twist, queue 100
 TEST(WorldPorts, P3dOdometryPort) {
   auto w = world_with_car(false);
@@ -66,12 +67,12 @@ TEST(WorldPorts, P3dOdometryPort) {
     if (p.config.name == "truth") ports = p.outputs;
   ASSERT_EQ(ports.size(), 1u);
   const OutputPort& p = ports[0];
-  EXPECT_EQ(p.type, SampleType::Odometry);
+  EXPECT_EQ(p.type, sample_type<OdometrySample>());
   EXPECT_EQ(p.topic, "/gazebo/ground_truth/mycar");
   EXPECT_EQ(p.queue, 100u);
   EXPECT_EQ(p.frame, "world");
   EXPECT_EQ(p.child_frame, "base_footprint");
-  EXPECT_FALSE(p.tf_prefix);
+  EXPECT_EQ(p.frame_rule, FrameRule::PrefixHere);
   EXPECT_EQ(p.tf, TfOrder::None);
   for (int i = 0; i < 6; ++i) {
     EXPECT_NEAR(p.pose_covariance[i], 0.01, 1e-15);
@@ -106,10 +107,10 @@ TEST(WorldPorts, HectorImuCovariancesFromItsNoise) {
                                      {"rateGaussianNoise", "0.01 0.02 0.03"}, {"yawGaussianNoise", "0.05"}});
   ASSERT_EQ(ports.size(), 2u);
   const OutputPort& p = ports[0];
-  EXPECT_EQ(p.type, SampleType::Imu);
+  EXPECT_EQ(p.type, sample_type<ImuSample>());
   EXPECT_EQ(p.name, "imu");
   EXPECT_EQ(p.frame, "imu_link");  // a Frame key loses its leading '/' when resolved
-  EXPECT_FALSE(p.tf_prefix);
+  EXPECT_EQ(p.frame_rule, FrameRule::NoPrefix);
   EXPECT_EQ(p.queue, 10u);
   EXPECT_NEAR(p.angular_velocity_covariance[0], 1e-4, 1e-18);
   EXPECT_NEAR(p.angular_velocity_covariance[1], 4e-4, 1e-18);
@@ -137,7 +138,7 @@ TEST(WorldPorts, HectorImuBiasPort) {
   const auto ports = attached_ports("libhector_gazebo_ros_imu.so", {{"topicName", "/himu"}});
   ASSERT_EQ(ports.size(), 2u);
   EXPECT_EQ(ports[1].name, "bias");
-  EXPECT_EQ(ports[1].type, SampleType::Imu);
+  EXPECT_EQ(ports[1].type, sample_type<ImuSample>());
   EXPECT_EQ(ports[1].topic, "/himu/bias");
   const std::array<double, 3> none = {0, 0, 0};
   EXPECT_EQ(ports[1].orientation_covariance, none);
@@ -149,24 +150,24 @@ TEST(WorldPorts, HectorGpsFixThenVelocity) {
   const auto ports = attached_ports("libhector_gazebo_ros_gps.so",
                                     {{"topicName", "/fix"}, {"velocityTopicName", "/fix_velocity"}});
   ASSERT_EQ(ports.size(), 2u);
-  EXPECT_EQ(ports[0].type, SampleType::NavSatFix);
+  EXPECT_EQ(ports[0].type, sample_type<NavSatFixSample>());
   EXPECT_EQ(ports[0].topic, "/fix");
-  EXPECT_EQ(ports[1].type, SampleType::Vector3);
+  EXPECT_EQ(ports[1].type, sample_type<Vector3Sample>());
   EXPECT_EQ(ports[1].topic, "/fix_velocity");
 }
 
 // useMagneticFieldMsgs picks sensor_msgs/MagneticField over Vector3Stamped
 TEST(WorldPorts, HectorMagneticMessageType) {
-  EXPECT_EQ(attached_ports("libhector_gazebo_ros_magnetic.so", {}).at(0).type, SampleType::Vector3);
+  EXPECT_EQ(attached_ports("libhector_gazebo_ros_magnetic.so", {}).at(0).type, sample_type<Vector3Sample>());
   EXPECT_EQ(attached_ports("libhector_gazebo_ros_magnetic.so", {{"useMagneticFieldMsgs", "true"}}).at(0).type,
-            SampleType::MagneticField);
+            sample_type<MagneticFieldSample>());
 }
 
 // TF world -> <frameId>_actual, frameId's leading '/' dropped
 TEST(WorldPorts, HandOfGodActualPoseOnTf) {
   const auto ports = attached_ports("libgazebo_ros_hand_of_god.so", {{"linkName", "base_footprint"}, {"frameId", "/hog"}});
   ASSERT_EQ(ports.size(), 1u);
-  EXPECT_EQ(ports[0].type, SampleType::Transform);
+  EXPECT_EQ(ports[0].type, sample_type<TransformSample>());
   EXPECT_EQ(ports[0].topic, "");
   EXPECT_EQ(ports[0].frame, "world");
   EXPECT_EQ(ports[0].child_frame, "hog_actual");

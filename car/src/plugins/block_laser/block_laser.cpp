@@ -114,8 +114,9 @@ const PluginKind& block_laser_kind() {
     // sensor_msgs/PointCloud on topicName in frameName, queue 1; frame_name_ = tf::resolve(getParam("tf_prefix"),
     // frameName): tf_prefix of the plug-in's own namespace
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
-      OutputPort p = sensor_port(c, robot, "cloud", SampleType::PointCloud, "topicName", c.text("frameName"), 1);
-      p.frame_prefix_here = true;
+      OutputPort p =
+          sensor_port(c, robot, "cloud", sample_type<PointCloudSample>(), "topicName", c.text("frameName"), 1);
+      p.frame_rule = FrameRule::PrefixHere;
       return std::vector<OutputPort>{p};
     };
     k.finish = finish;

@@ -14,7 +14,7 @@ struct BlockLaserOut : Output, PointCloudSample {
   std::string sensor;
   int rows = 0, cols = 0;          // vertical x horizontal samples; point (row j, col i) at index i + j cols
   void visit(FieldVisitor& v) const override;
-  const PointCloudSample* point_cloud_sample() const override { return this; }
+  void samples(SampleList& list) const override { list.add(static_cast<const PointCloudSample*>(this)); }
 };
 
 const PluginKind& block_laser_kind();

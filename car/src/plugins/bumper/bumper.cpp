@@ -122,8 +122,9 @@ const PluginKind& bumper_kind() {
     // gazebo_msgs/ContactsState on bumperTopicName, header frame frameName, queue 1
     // frame_name_ = tf::resolve(getParam("tf_prefix"), frameName): tf_prefix of the plug-in's own namespace
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
-      OutputPort p = sensor_port(c, robot, "contacts", SampleType::Contacts, "bumperTopicName", c.text("frameName"), 1);
-      p.frame_prefix_here = true;
+      OutputPort p = sensor_port(c, robot, "contacts", sample_type<ContactsSample>(), "bumperTopicName",
+                                 c.text("frameName"), 1);
+      p.frame_rule = FrameRule::PrefixHere;
       return std::vector<OutputPort>{p};
     };
     k.finish = finish;

@@ -9,11 +9,10 @@
 
 namespace car_sim {
 
-// ContactPair (one pair of bodies in contact) is a sample type of the ports (car_sim/ports.hpp).
-struct ContactsOut : Output {
-  std::vector<ContactPair> states;
+// states: one ContactPair per pair of bodies in contact (ContactsSample, car_sim/ports.hpp)
+struct ContactsOut : Output, ContactsSample {
   void visit(FieldVisitor& v) const override;
-  const std::vector<ContactPair>* contacts_sample() const override { return &states; }
+  void samples(SampleList& list) const override { list.add(static_cast<const ContactsSample*>(this)); }
 };
 
 // The link a contact sensor's <contact><collision> names: "LINK_collision", "LINK_collision_N", or a lumped

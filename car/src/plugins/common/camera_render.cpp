@@ -515,21 +515,21 @@ void CameraOut::visit(FieldVisitor& v) const {
   if (!point_rgb.empty()) v.array("point_rgb", point_rgb.data(), {H, W, 3});
 }
 
-bool CameraOut::image_sample(size_t frame, ImageSample* s) const {
-  if (frame != 0) return false;
-  s->width = width;
-  s->height = height;
-  s->f = f;
-  s->cx = cx;
-  s->cy = cy;
-  s->encoding = encoding;
-  s->step = static_cast<uint32_t>(step());
-  s->image = image.empty() ? nullptr : image.data();
-  s->image_bytes = image.size();
-  s->depth = depth.empty() ? nullptr : depth.data();
-  s->points = points.empty() ? nullptr : points.data();
-  s->point_rgb = point_rgb.empty() ? nullptr : point_rgb.data();
-  return true;
+ImageSample CameraOut::frame_view() const {
+  ImageSample s;
+  s.width = width;
+  s.height = height;
+  s.f = f;
+  s.cx = cx;
+  s.cy = cy;
+  s.encoding = encoding;
+  s.step = static_cast<uint32_t>(step());
+  s.image = image.empty() ? nullptr : image.data();
+  s.image_bytes = image.size();
+  s.depth = depth.empty() ? nullptr : depth.data();
+  s.points = points.empty() ? nullptr : points.data();
+  s.point_rgb = point_rgb.empty() ? nullptr : point_rgb.data();
+  return s;
 }
 
 std::string camera_base(const PluginConfig& c, const std::string& robot, const std::string& sub) {
@@ -552,14 +552,14 @@ OutputPort image_port(const PluginConfig& c, const std::string& robot, const std
   p.queue = 2;
   p.frame = c.text("frameName");
   // camera_utils: frame_name_ = tf::resolve(tf::getPrefixParam(rosnode_), frameName), tf_prefix searched upwards
-  p.tf_prefix = true;
+  p.frame_rule = FrameRule::PrefixSearched;
   return p;
 }
 
 // camera_info: D, the baseline, the period
 OutputPort info_port(const PluginConfig& c, const std::string& robot, const std::string& base, const char* name,
                      const std::string& topic, size_t frame, double baseline) {
-  OutputPort p = image_port(c, robot, base, name, SampleType::CameraInfo, topic);
+  OutputPort p = image_port(c, robot, base, name, sample_type<CameraInfoSample>(), topic);
   p.image.frame = frame;
   p.image.distortion = {c.number("distortionK1"), c.number("distortionK2"), c.number("distortionT1"),
                         c.number("distortionT2"), c.number("distortionK3")};
@@ -577,7 +577,7 @@ OutputPort info_port(const PluginConfig& c, const std::string& robot, const std:
 std::vector<OutputPort> camera_ports(const PluginConfig& c, const std::string& robot, const std::string& sub,
                                      size_t frame, double baseline) {
   const std::string base = camera_base(c, robot, sub);
-  OutputPort image = image_port(c, robot, base, "image", SampleType::Image, c.text("imageTopicName"));
+  OutputPort image = image_port(c, robot, base, "image", sample_type<ImageSample>(), c.text("imageTopicName"));
   image.image.frame = frame;
   return {image, info_port(c, robot, base, "camera_info", c.text("cameraInfoTopicName"), frame, baseline)};
 }
@@ -585,7 +585,7 @@ std::vector<OutputPort> camera_ports(const PluginConfig& c, const std::string& r
 void throttle_images(std::vector<OutputPort>* ports) {
   // each image takes its camera_info's period (the port after it)
   for (size_t i = 0; i + 1 < ports->size(); ++i)
-    if ((*ports)[i].type == SampleType::Image && (*ports)[i + 1].type == SampleType::CameraInfo)
+    if ((*ports)[i].type == sample_type<ImageSample>() && (*ports)[i + 1].type == sample_type<CameraInfoSample>())
       (*ports)[i].min_period = (*ports)[i + 1].image.period;
 }
 
@@ -599,11 +599,13 @@ std::vector<OutputPort> depth_camera_ports(const PluginConfig& c, const std::str
       info_port(c, robot, base, "depth_camera_info", c.text("depthImageCameraInfoTopicName"), 0, c.number("hackBaseline"));
   depth_info.idle_parts = kCameraDepth;
   ports.insert(ports.begin() + 1, depth_info);
-  OutputPort depth = image_port(c, robot, base, "depth", SampleType::DepthImage, c.text("depthImageTopicName"));
+  OutputPort depth =
+      image_port(c, robot, base, "depth", sample_type<DepthImageSample>(), c.text("depthImageTopicName"));
   depth.image.millimetres = c.flag("useDepth16UC1Format");
   depth.parts = kCameraDepth;
   ports.push_back(depth);
-  OutputPort cloud = image_port(c, robot, base, "points", SampleType::DepthCloud, c.text("pointCloudTopicName"));
+  OutputPort cloud =
+      image_port(c, robot, base, "points", sample_type<DepthCloudSample>(), c.text("pointCloudTopicName"));
   cloud.parts = kCameraCloud;
   ports.push_back(cloud);
   return ports;

@@ -60,7 +60,9 @@ struct CameraOut : Output {
   int channel_bytes() const { return encoding.size() > 2 && encoding.compare(encoding.size() - 2, 2, "16") == 0 ? 2 : 1; }
   size_t step() const { return static_cast<size_t>(width) * channels() * channel_bytes(); }  // [bytes] per row
   void visit(FieldVisitor& v) const override;
-  bool image_sample(size_t frame, ImageSample* s) const override;  // frame 0: this frame
+  // The frame as views of its arrays.
+  ImageSample frame_view() const;
+  void samples(SampleList& list) const override { list.add(frame_view()); }
 };
 
 // The image encoding of a sensor <format> (docs/COMPAT-sensors.md "16-bit images"); "" for an unknown one.

@@ -12,7 +12,7 @@ void ImuOut::visit(FieldVisitor& v) const {
 }
 
 std::vector<OutputPort> imu_ports(const PluginConfig& c, const std::string& robot, const Environment&) {
-  OutputPort p = sensor_port(c, robot, "imu", SampleType::Imu, "topicName", c.text("frameName"), 1);
+  OutputPort p = sensor_port(c, robot, "imu", sample_type<ImuSample>(), "topicName", c.text("frameName"), 1);
   const double variance = std::pow(c.number("gaussianNoise"), 2);
   p.orientation_covariance.fill(variance);
   p.angular_velocity_covariance.fill(variance);

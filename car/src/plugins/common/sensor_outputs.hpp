@@ -14,10 +14,7 @@ namespace car_sim {
 struct ImuOut : Output, ImuSample {
   std::string sensor;
   void visit(FieldVisitor& v) const override;
-  bool imu_sample(const std::string& port, ImuSample* s) const override {
-    *s = *this;
-    return true;
-  }
+  void samples(SampleList& list) const override { list.add(static_cast<const ImuSample&>(*this)); }
 };
 
 // Both gazebo_ros IMU plug-ins' port: sensor_msgs/Imu on topicName in frameName, queue 1 (as their advertise),
@@ -29,7 +26,7 @@ std::vector<OutputPort> imu_ports(const PluginConfig& c, const std::string& robo
 struct RangeOut : Output, RangeSample {
   std::string sensor;
   void visit(FieldVisitor& v) const override;
-  const RangeSample* range_sample() const override { return this; }
+  void samples(SampleList& list) const override { list.add(static_cast<const RangeSample*>(this)); }
 };
 
 }  // namespace car_sim

@@ -57,8 +57,8 @@ const PluginKind& f3d_kind() {
     k.output_group = "wrenches";
     // geometry_msgs/WrenchStamped on topicName, header frame frameName, queue 1
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
-      OutputPort p = sensor_port(c, robot, "wrench", SampleType::Wrench, "topicName", c.text("frameName"), 1);
-      p.frame_prefix_here = true;  // frame_name_ = tf::resolve(getParam("tf_prefix"), frameName)
+      OutputPort p = sensor_port(c, robot, "wrench", sample_type<WrenchSample>(), "topicName", c.text("frameName"), 1);
+      p.frame_rule = FrameRule::PrefixHere;  // frame_name_ = tf::resolve(getParam("tf_prefix"), frameName)
       return std::vector<OutputPort>{p};
     };
     k.finish = finish;

@@ -6,10 +6,10 @@
 
 namespace car_sim {
 
-struct WrenchOut : Output {
-  Wrench wrench;  // [N], [N m]; the frame is the kind's (f3d: world; ft_sensor: the child link)
+// wrench [N], [N m]: the frame is the kind's (f3d: world; ft_sensor: the child link)
+struct WrenchOut : Output, WrenchSample {
   void visit(FieldVisitor& v) const override;
-  const Wrench* wrench_sample() const override { return &wrench; }
+  void samples(SampleList& list) const override { list.add(static_cast<const WrenchSample*>(this)); }
 };
 
 const PluginKind& f3d_kind();

@@ -82,8 +82,8 @@ const PluginKind& ft_sensor_kind() {
     k.output_group = "wrenches";
     // geometry_msgs/WrenchStamped on topicName, header frame the joint's child link, queue 1
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
-      OutputPort p = sensor_port(c, robot, "wrench", SampleType::Wrench, "topicName", c.link, 1);
-      p.frame_prefix_here = true;  // frame_name_ = tf::resolve(getParam("tf_prefix"), the child link)
+      OutputPort p = sensor_port(c, robot, "wrench", sample_type<WrenchSample>(), "topicName", c.link, 1);
+      p.frame_rule = FrameRule::PrefixHere;  // frame_name_ = tf::resolve(getParam("tf_prefix"), the child link)
       return std::vector<OutputPort>{p};
     };
     k.finish = finish;

@@ -140,10 +140,10 @@ const PluginKind& hand_of_god_kind() {
     k.outputs = [](const PluginConfig& c, const std::string&, const Environment&) {
       OutputPort p;
       p.name = "actual";
-      p.type = SampleType::Transform;
+      p.type = sample_type<TransformSample>();
       p.frame = "world";
       p.child_frame = strip_frame(c.text("frameId")) + "_actual";
-      p.tf_prefix = false;
+      p.frame_rule = FrameRule::NoPrefix;
       return std::vector<OutputPort>{p};
     };
     k.finish = finish;

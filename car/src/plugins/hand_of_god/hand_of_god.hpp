@@ -16,10 +16,7 @@ class PoseTarget {
 struct PoseOut : Output {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // the link's frame, world frame
   void visit(FieldVisitor& v) const override;
-  bool pose_sample(Eigen::Isometry3d* p) const override {
-    *p = pose;
-    return true;
-  }
+  void samples(SampleList& list) const override { list.add(TransformSample{pose}); }
 };
 
 // The hand of god's wrench for a link at `pose` moving at v (world) and w_link (link frame) toward `target`:

@@ -140,8 +140,8 @@ const PluginKind& hector_gps_kind() {
     // sensor_msgs/NavSatFix on topicName, then geometry_msgs/Vector3Stamped on velocityTopicName, queue 10, frameId
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
       return std::vector<OutputPort>{
-          sensor_port(c, robot, "fix", SampleType::NavSatFix, "topicName", c.text("frameId"), 10),
-          sensor_port(c, robot, "velocity", SampleType::Vector3, "velocityTopicName", c.text("frameId"), 10)};
+          sensor_port(c, robot, "fix", sample_type<NavSatFixSample>(), "topicName", c.text("frameId"), 10),
+          sensor_port(c, robot, "velocity", sample_type<Vector3Sample>(), "velocityTopicName", c.text("frameId"), 10)};
     };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {

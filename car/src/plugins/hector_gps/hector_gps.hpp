@@ -12,10 +12,10 @@ namespace car_sim {
 struct GpsOut : Output, NavSatFixSample {
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // [m/s]
   void visit(FieldVisitor& v) const override;
-  const NavSatFixSample* nav_sat_fix_sample() const override { return this; }
-  bool vector3_sample(Eigen::Vector3d* v) const override {
-    *v = velocity;
-    return true;
+  // the fix; the velocity
+  void samples(SampleList& list) const override {
+    list.add(static_cast<const NavSatFixSample*>(this));
+    list.add(Vector3Sample{velocity});
   }
 };
 

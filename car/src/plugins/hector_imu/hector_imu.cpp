@@ -153,7 +153,7 @@ std::vector<OutputPort> outputs(const PluginConfig& c, const std::string& robot,
   const double g = env.gravity.norm();  // [m/s^2]
   std::vector<OutputPort> ports;
   if (!c.text("topicName").empty()) {
-    OutputPort p = sensor_port(c, robot, "imu", SampleType::Imu, "topicName", c.text("frameId"), 10);
+    OutputPort p = sensor_port(c, robot, "imu", sample_type<ImuSample>(), "topicName", c.text("frameId"), 10);
     for (int i = 0; i < 3; ++i) {
       p.angular_velocity_covariance[i] = w[i] * w[i];
       p.linear_acceleration_covariance[i] = a[i] * a[i];
@@ -164,7 +164,7 @@ std::vector<OutputPort> outputs(const PluginConfig& c, const std::string& robot,
     ports.push_back(p);
   }
   if (!c.text("biasTopicName").empty())
-    ports.push_back(sensor_port(c, robot, "bias", SampleType::Imu, "biasTopicName", c.text("frameId"), 10));
+    ports.push_back(sensor_port(c, robot, "bias", sample_type<ImuSample>(), "biasTopicName", c.text("frameId"), 10));
   return ports;
 }
 

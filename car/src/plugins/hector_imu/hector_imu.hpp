@@ -12,11 +12,10 @@ struct HectorImuOut : ImuOut {
   Eigen::Vector3d rate_bias = Eigen::Vector3d::Zero();                     // [rad/s]
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();                    // [m/s^2]
   void visit(FieldVisitor& v) const override;
-  // port "bias": the biases as an Imu sample (orientation_error, rate_bias, accel_bias); else the measurement
-  bool imu_sample(const std::string& port, ImuSample* s) const override {
-    if (port != "bias") return ImuOut::imu_sample(port, s);
-    *s = {orientation_error, rate_bias, accel_bias};
-    return true;
+  // the measurement; for the port "bias", the biases as an Imu sample (orientation_error, rate_bias, accel_bias)
+  void samples(SampleList& list) const override {
+    ImuOut::samples(list);
+    list.add(ImuSample{orientation_error, rate_bias, accel_bias}, "bias");
   }
 };
 

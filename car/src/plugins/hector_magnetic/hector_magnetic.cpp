@@ -101,7 +101,8 @@ const PluginKind& hector_magnetic_kind() {
     // geometry_msgs/Vector3Stamped, or sensor_msgs/MagneticField with useMagneticFieldMsgs, on topicName in frameId,
     // queue 1
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
-      const SampleType type = c.flag("useMagneticFieldMsgs") ? SampleType::MagneticField : SampleType::Vector3;
+      const SampleType type =
+          c.flag("useMagneticFieldMsgs") ? sample_type<MagneticFieldSample>() : sample_type<Vector3Sample>();
       return std::vector<OutputPort>{sensor_port(c, robot, "magnetic", type, "topicName", c.text("frameId"), 1)};
     };
     k.finish = finish;

@@ -11,10 +11,8 @@ namespace car_sim {
 struct MagneticOut : Output {
   Eigen::Vector3d field = Eigen::Vector3d::Zero();  // the body frame (magnitude's unit, default 1)
   void visit(FieldVisitor& v) const override;
-  bool vector3_sample(Eigen::Vector3d* v) const override {
-    *v = field;
-    return true;
-  }
+  // a Vector3 (or, served by it, a MagneticField) port's
+  void samples(SampleList& list) const override { list.add(Vector3Sample{field}); }
 };
 
 const PluginKind& hector_magnetic_kind();

@@ -120,7 +120,8 @@ const PluginKind& hector_sonar_kind() {
     k.output_group = "ranges";
     // sensor_msgs/Range (ULTRASOUND) on topicName in frameId, queue 1, at the plug-in's own rate
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
-      return std::vector<OutputPort>{sensor_port(c, robot, "range", SampleType::Range, "topicName", c.text("frameId"), 1)};
+      return std::vector<OutputPort>{
+          sensor_port(c, robot, "range", sample_type<RangeSample>(), "topicName", c.text("frameId"), 1)};
     };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {

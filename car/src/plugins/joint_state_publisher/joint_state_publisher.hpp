@@ -11,7 +11,7 @@ namespace car_sim {
 struct JointStatesOut : Output {
   std::vector<JointState> joints;  // in the order of jointName
   void visit(FieldVisitor& v) const override;
-  const std::vector<JointState>* joint_states_sample() const override { return &joints; }
+  void samples(SampleList& list) const override { list.add(JointStatesSample{&joints, nullptr}); }
 };
 
 // jointName as upstream reads it: spaces removed, split at ',' (an empty piece stays a name, as boost::split).

@@ -147,8 +147,9 @@ const PluginKind& laser_kind() {
     // sensor_msgs/LaserScan on topicName in frameName, queue 10; frame_name_ = tf::resolve(tf::getPrefixParam(
     // rosnode_), frameName): tf_prefix searched upwards from the plug-in's namespace
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
-      OutputPort p = sensor_port(c, robot, "scan", SampleType::LaserScan, "topicName", c.text("frameName"), 10);
-      p.tf_prefix = true;
+      OutputPort p =
+          sensor_port(c, robot, "scan", sample_type<LaserScanSample>(), "topicName", c.text("frameName"), 10);
+      p.frame_rule = FrameRule::PrefixSearched;
       return std::vector<OutputPort>{p};
     };
     k.finish = finish;

@@ -12,7 +12,7 @@ namespace car_sim {
 struct LaserScanOut : Output, LaserScanSample {
   std::string sensor;
   void visit(FieldVisitor& v) const override;
-  const LaserScanSample* laser_scan_sample() const override { return this; }
+  void samples(SampleList& list) const override { list.add(static_cast<const LaserScanSample*>(this)); }
 };
 
 const PluginKind& laser_kind();

@@ -160,11 +160,11 @@ class MultiCamera : public Plugin {
 
 }  // namespace
 
-// Each side's fields under "<side>/": e.g. "left/image".
-bool MultiCameraOut::image_sample(size_t frame, ImageSample* s) const {
-  return frame < frames.size() && frames[frame].image_sample(0, s);
+void MultiCameraOut::samples(SampleList& list) const {
+  for (size_t i = 0; i < frames.size(); ++i) list.add(frames[i].frame_view(), {}, i);
 }
 
+// Each side's fields under "<side>/": e.g. "left/image".
 void MultiCameraOut::visit(FieldVisitor& v) const {
   class Prefixed : public FieldVisitor {
    public:

@@ -14,7 +14,7 @@ struct MultiCameraOut : Output {
   std::vector<std::string> sides;  // "left", "right" (those the sensor has)
   std::vector<CameraOut> frames;   // one per side, same tick
   void visit(FieldVisitor& v) const override;
-  bool image_sample(size_t frame, ImageSample* s) const override;  // frame i: frames[i]
+  void samples(SampleList& list) const override;  // frame i: frames[i]
 };
 
 const PluginKind& multicamera_kind();

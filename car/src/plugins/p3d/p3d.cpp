@@ -116,14 +116,13 @@ const PluginKind& p3d_kind() {
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
       OutputPort p;
       p.name = "odom";
-      p.type = SampleType::Odometry;
+      p.type = sample_type<OdometrySample>();
       p.ns = plugin_robot_namespace(c, robot);
       p.topic = resolve_topic(p.ns, c.text("topicName"));
       p.queue = 100;
       p.frame = c.text("frameName");
       p.child_frame = c.text("bodyName");
-      p.tf_prefix = false;
-      p.frame_prefix_here = true;
+      p.frame_rule = FrameRule::PrefixHere;
       const double variance = c.number("gaussianNoise") * c.number("gaussianNoise");
       p.pose_covariance.fill(variance);
       p.twist_covariance.fill(variance);

@@ -14,10 +14,7 @@ struct P3dOut : Output {
   Eigen::Vector3d linear = Eigen::Vector3d::Zero();        // [m/s] of the body's origin, frameName's axes
   Eigen::Vector3d angular = Eigen::Vector3d::Zero();       // [rad/s], frameName's axes
   void visit(FieldVisitor& v) const override;
-  bool odometry_sample(OdometrySample* s) const override {
-    *s = {pose, linear, angular, std::nullopt};
-    return true;
-  }
+  void samples(SampleList& list) const override { list.add(OdometrySample{pose, linear, angular, std::nullopt}); }
 };
 
 const PluginKind& p3d_kind();

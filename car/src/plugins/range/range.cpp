@@ -89,9 +89,9 @@ const PluginKind& range_kind() {
     // sensor_msgs/Range on topicName in frameName, queue 1, at most updateRate per second of sim time (0 = every
     // sensor update)
     k.outputs = [](const PluginConfig& c, const std::string& robot, const Environment&) {
-      OutputPort p = sensor_port(c, robot, "range", SampleType::Range, "topicName", c.text("frameName"), 1);
+      OutputPort p = sensor_port(c, robot, "range", sample_type<RangeSample>(), "topicName", c.text("frameName"), 1);
       // frame_name_ = tf::resolve(getParam("tf_prefix"), frameName): tf_prefix of the plug-in's own namespace
-      p.frame_prefix_here = true;
+      p.frame_rule = FrameRule::PrefixHere;
       const double r = c.number("updateRate");
       p.min_period = r > 0 ? 1.0 / r : 0.0;
       return std::vector<OutputPort>{p};

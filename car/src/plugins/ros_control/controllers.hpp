@@ -33,14 +33,13 @@ OutputPort controller_output(const std::string& name, const std::string& leaf, S
 struct JointStatesOutput : ControllerOutput {
   std::vector<JointState> joints;
   std::vector<double> effort;  // [N m] or [N], one per joint
-  const std::vector<JointState>* joint_states_sample() const override { return &joints; }
-  const std::vector<double>* joint_efforts_sample() const override { return &effort; }
+  void samples(SampleList& list) const override { list.add(JointStatesSample{&joints, &effort}); }
   void visit(FieldVisitor& v) const override;
 };
 
 // control_msgs/JointControllerState of the PID joint controllers.
 struct JointControllerStateOutput : ControllerOutput, ControllerStateSample {
-  const ControllerStateSample* controller_state_sample() const override { return this; }
+  void samples(SampleList& list) const override { list.add(static_cast<const ControllerStateSample*>(this)); }
   void visit(FieldVisitor& v) const override;
 };
 
@@ -48,13 +47,14 @@ struct JointControllerStateOutput : ControllerOutput, ControllerStateSample {
 struct DiffDriveOdometryOutput : ControllerOutput {
   double x = 0, y = 0, heading = 0;   // [m], [rad], odom frame
   double linear = 0, angular = 0;     // [m/s], [rad/s], base frame
-  bool odometry_sample(OdometrySample* s) const override;
+  // the pose from x, y and heading, its orientation the controller's quaternion from the yaw
+  void samples(SampleList& list) const override;
   void visit(FieldVisitor& v) const override;
 };
 
 // joint_trajectory_controller's state: desired, actual and error per joint.
 struct TrajectoryStateOutput : ControllerOutput, TrajectoryStateSample {
-  const TrajectoryStateSample* trajectory_state_sample() const override { return this; }
+  void samples(SampleList& list) const override { list.add(static_cast<const TrajectoryStateSample*>(this)); }
   void visit(FieldVisitor& v) const override;
 };
 
@@ -65,7 +65,7 @@ struct TrajectoryResultOutput : ControllerOutput {
   int error_code = 0;  // control_msgs/FollowJointTrajectoryResult codes
   std::string error_string;
   GoalResultSample sample;  // filled by finish()
-  const GoalResultSample* goal_result_sample() const override { return &sample; }
+  void samples(SampleList& list) const override { list.add(&sample); }
   void finish();
   void visit(FieldVisitor& v) const override;
 };

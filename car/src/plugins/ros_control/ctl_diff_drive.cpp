@@ -9,12 +9,13 @@
 namespace car_sim {
 namespace control {
 
-bool DiffDriveOdometryOutput::odometry_sample(OdometrySample* s) const {
-  s->orientation = Eigen::Quaterniond(std::cos(heading / 2), 0, 0, std::sin(heading / 2));
-  s->pose = Eigen::Translation3d(x, y, 0.0) * *s->orientation;
-  s->linear = Eigen::Vector3d(linear, 0, 0);
-  s->angular = Eigen::Vector3d(0, 0, angular);
-  return true;
+void DiffDriveOdometryOutput::samples(SampleList& list) const {
+  OdometrySample s;
+  s.orientation = Eigen::Quaterniond(std::cos(heading / 2), 0, 0, std::sin(heading / 2));
+  s.pose = Eigen::Translation3d(x, y, 0.0) * *s.orientation;
+  s.linear = Eigen::Vector3d(linear, 0, 0);
+  s.angular = Eigen::Vector3d(0, 0, angular);
+  list.add(std::move(s));
 }
 
 void DiffDriveOdometryOutput::visit(FieldVisitor& v) const {
@@ -201,7 +202,7 @@ class DiffDriveCtl : public DiffDriveController {
     InputPort c = controller_input(name, "cmd_vel", InputType::Twist, ns + "/cmd_vel", 1);
     c.axes = kLinearX | kAngularZ;
     in->push_back(c);
-    OutputPort o = controller_output(name, "odom", SampleType::Odometry, ns + "/odom", 100);
+    OutputPort o = controller_output(name, "odom", sample_type<OdometrySample>(), ns + "/odom", 100);
     o.frame = odom_frame_;
     o.child_frame = base_frame_;
     o.tf = enable_tf_ ? TfOrder::After : TfOrder::None;

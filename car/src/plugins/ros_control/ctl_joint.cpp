@@ -48,8 +48,7 @@ OutputPort controller_output(const std::string& name, const std::string& leaf, S
   p.type = type;
   p.topic = topic;
   p.queue = queue;
-  p.tf_prefix = false;
-  p.frames_as_written = true;
+  p.frame_rule = FrameRule::AsWritten;
   return p;
 }
 
@@ -150,7 +149,7 @@ class JointStateCtl : public Controller {
   // joint_states in the robot's namespace, queue 10 (as joint_state_controller)
   void ports(const std::string& name, const std::string& robot_ns, const std::string&, std::vector<InputPort>*,
              std::vector<OutputPort>* out) const override {
-    OutputPort p = controller_output(name, "joint_states", SampleType::JointStates,
+    OutputPort p = controller_output(name, "joint_states", sample_type<JointStatesSample>(),
                                      robot_ns.empty() ? "/joint_states" : "/" + robot_ns + "/joint_states", 10);
     p.with_effort = true;
     out->push_back(p);
@@ -285,7 +284,7 @@ class PidCtl : public CommandController {
   void ports(const std::string& name, const std::string& robot_ns, const std::string& ns, std::vector<InputPort>* in,
              std::vector<OutputPort>* out) const override {
     CommandController::ports(name, robot_ns, ns, in, out);
-    out->push_back(controller_output(name, "state", SampleType::ControllerState, ns + "/state", 1));
+    out->push_back(controller_output(name, "state", sample_type<ControllerStateSample>(), ns + "/state", 1));
   }
 
  private:

@@ -36,12 +36,12 @@ static TrajGoal to_goal(const JointTrajectory& m) {
 
 void TrajectoryController::ports(const std::string& name, const std::string&, const std::string& ns,
                                  std::vector<InputPort>* in, std::vector<OutputPort>* out) const {
-  out->push_back(controller_output(name, "state", SampleType::TrajectoryState, ns + "/state", 1));
+  out->push_back(controller_output(name, "state", sample_type<TrajectoryStateSample>(), ns + "/state", 1));
   in->push_back(controller_input(name, "command", InputType::JointTrajectory, ns + "/command", 1));
   // the action under <ns>/follow_joint_trajectory: goals and cancels in, results out
   in->push_back(controller_input(name, "follow_joint_trajectory", InputType::TrajectoryGoal,
                                  ns + "/follow_joint_trajectory", 1));
-  out->push_back(controller_output(name, "follow_joint_trajectory", SampleType::GoalResult,
+  out->push_back(controller_output(name, "follow_joint_trajectory", sample_type<GoalResultSample>(),
                                    ns + "/follow_joint_trajectory", 1));
 }
 

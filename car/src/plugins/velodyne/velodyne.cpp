@@ -125,7 +125,8 @@ const PluginKind& velodyne_kind() {
       const std::string ns = plugin_robot_namespace(c, robot);
       const std::string& f = c.text("frameName");
       const std::string frame = !f.empty() && f[0] == '/' ? f.substr(1) : ns.empty() ? f : ns + "/" + f;
-      return std::vector<OutputPort>{sensor_port(c, robot, "points", SampleType::LidarCloud, "topicName", frame, 1)};
+      return std::vector<OutputPort>{
+          sensor_port(c, robot, "points", sample_type<LidarCloudSample>(), "topicName", frame, 1)};
     };
     k.finish = finish;
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t seed) -> std::unique_ptr<Plugin> {

@@ -14,7 +14,7 @@ namespace car_sim {
 struct VelodyneOut : Output, LidarCloudSample {
   std::string sensor;
   void visit(FieldVisitor& v) const override;
-  const LidarCloudSample* lidar_cloud_sample() const override { return this; }
+  void samples(SampleList& list) const override { list.add(static_cast<const LidarCloudSample*>(this)); }
 };
 
 const PluginKind& velodyne_kind();

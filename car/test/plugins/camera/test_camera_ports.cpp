@@ -52,18 +52,18 @@ TEST(CameraPorts, KinectTopicsInOrder) {
   const auto ports = ports_of(*w, "kinect_camera_controller");
   ASSERT_EQ(ports.size(), 5u);
   const std::vector<std::pair<SampleType, std::string>> want = {
-      {SampleType::Image, "/camera/rgb/image_raw"},
-      {SampleType::CameraInfo, "/camera/depth/camera_info"},
-      {SampleType::CameraInfo, "/camera/rgb/camera_info"},
-      {SampleType::DepthImage, "/camera/depth/image_raw"},
-      {SampleType::DepthCloud, "/camera/depth/points"}};
+      {sample_type<ImageSample>(), "/camera/rgb/image_raw"},
+      {sample_type<CameraInfoSample>(), "/camera/depth/camera_info"},
+      {sample_type<CameraInfoSample>(), "/camera/rgb/camera_info"},
+      {sample_type<DepthImageSample>(), "/camera/depth/image_raw"},
+      {sample_type<DepthCloudSample>(), "/camera/depth/points"}};
   for (size_t i = 0; i < want.size(); ++i) {
     EXPECT_EQ(ports[i].type, want[i].first) << i;
     EXPECT_EQ(ports[i].topic, want[i].second) << i;
     EXPECT_EQ(ports[i].queue, 2u) << i;
     EXPECT_EQ(ports[i].frame, "support_depth") << i;
     // camera_utils resolves the frame with tf_prefix searched upwards (the ROS skin looks it up)
-    EXPECT_TRUE(ports[i].tf_prefix) << i;
+    EXPECT_EQ(ports[i].frame_rule, FrameRule::PrefixSearched) << i;
     EXPECT_EQ(ports[i].image.frame, 0u) << i;
   }
   EXPECT_FALSE(ports[3].image.millimetres);
@@ -113,14 +113,14 @@ TEST(CameraPorts, MulticameraSamplesAreItsFrames) {
   w->step(100);
   const auto outs = w->take_outputs<MultiCameraOut>();
   ASSERT_EQ(outs.size(), 1u);
-  ImageSample s;
-  ASSERT_TRUE(outs[0].image_sample(1, &s));
-  EXPECT_EQ(s.image, outs[0].frames[1].image.data());
-  EXPECT_EQ(s.image_bytes, 32u * 24u * 3u);
-  EXPECT_EQ(s.step, 96u);
-  EXPECT_EQ(s.encoding, "rgb8");
-  EXPECT_EQ(s.depth, nullptr);
-  EXPECT_FALSE(outs[0].image_sample(2, &s));
+  const std::optional<ImageSample> s = outs[0].sample_of<ImageSample>({}, 1);
+  ASSERT_TRUE(s);
+  EXPECT_EQ(s->image, outs[0].frames[1].image.data());
+  EXPECT_EQ(s->image_bytes, 32u * 24u * 3u);
+  EXPECT_EQ(s->step, 96u);
+  EXPECT_EQ(s->encoding, "rgb8");
+  EXPECT_EQ(s->depth, nullptr);
+  EXPECT_FALSE(outs[0].sample_of<ImageSample>({}, 2));
 }
 
 // The triggered camera sends camera_info only while its image has subscribers (upstream's triggered camera);
@@ -180,10 +180,10 @@ TEST(CameraPorts, TheCameraPluginWorksOnADepthSensor) {
   w->step(100);
   const OutputQueue q = w->take_outputs();
   ASSERT_FALSE(q.empty());
-  ImageSample s;
-  ASSERT_TRUE(q.back()->image_sample(0, &s));
-  EXPECT_EQ(s.width, 8u);
-  EXPECT_NE(s.image, nullptr);
+  const std::optional<ImageSample> s = q.back()->sample_of<ImageSample>();
+  ASSERT_TRUE(s);
+  EXPECT_EQ(s->width, 8u);
+  EXPECT_NE(s->image, nullptr);
 }
 
 // pointCloudCutoff >= pointCloudCutoffMax: upstream keeps no depth (every pixel NaN); car the same, with a warning.
@@ -199,10 +199,10 @@ TEST(CameraPorts, AKinectWithAnEmptyDepthBandLoads) {
   w->step(100);
   const OutputQueue q = w->take_outputs();
   ASSERT_FALSE(q.empty());
-  ImageSample s;
-  ASSERT_TRUE(q.back()->image_sample(0, &s));
-  ASSERT_NE(s.depth, nullptr);
-  for (int i = 0; i < s.width * s.height; ++i) EXPECT_TRUE(std::isnan(s.depth[i])) << i;
+  const std::optional<ImageSample> s = q.back()->sample_of<ImageSample>();
+  ASSERT_TRUE(s);
+  ASSERT_NE(s->depth, nullptr);
+  for (int i = 0; i < s->width * s->height; ++i) EXPECT_TRUE(std::isnan(s->depth[i])) << i;
 }
 
 namespace {
@@ -235,7 +235,7 @@ TEST(CameraPorts, NonZeroIntrinsicsGoToTheInfoPort) {
                                                                 "</plugin>"));
   const auto ports = ports_of(*w, "cam_plugin");
   ASSERT_EQ(ports.size(), 2u);
-  ASSERT_EQ(ports[1].type, SampleType::CameraInfo);
+  ASSERT_EQ(ports[1].type, sample_type<CameraInfoSample>());
   EXPECT_EQ(ports[1].image.cx, 3.5);
   EXPECT_EQ(ports[1].image.cy, 2.25);
   EXPECT_EQ(ports[1].image.focal_length, 7.32195088685);

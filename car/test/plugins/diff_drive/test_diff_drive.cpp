@@ -134,11 +134,11 @@ TEST(DiffDrive, PublishTfFalseKeepsTheWheelJointStates) {
   ASSERT_GE(p.outputs.size(), 2u);
   EXPECT_EQ(p.outputs[0].topic, "");
   EXPECT_EQ(p.outputs[0].tf, TfOrder::None);
-  EXPECT_EQ(p.outputs[1].type, SampleType::JointStates);
+  EXPECT_EQ(p.outputs[1].type, sample_type<JointStatesSample>());
   w->step(100);
   const auto outs = w->take_outputs();
   ASSERT_FALSE(outs.empty());
-  EXPECT_NE(outs.back()->joint_states_sample(), nullptr);
+  EXPECT_TRUE(outs.back()->sample_of<JointStatesSample>());
 }
 
 // An odometrySource upstream's options map lacks is warned, and the default kept: world odometry.

@@ -124,10 +124,9 @@ TEST(ControllerPorts, OutputsNameTheirPort) {
   w->step(100);
   const OutputQueue out = w->take_outputs_if([](const Output& o) { return o.plugin == kPlugin; });
   ASSERT_FALSE(out.empty());
-  OdometrySample s;
   for (const auto& o : out) {
     EXPECT_EQ(o->port, "dd/odom");
-    EXPECT_TRUE(o->odometry_sample(&s));
+    EXPECT_TRUE(o->sample_of<OdometrySample>());
   }
 }
 
@@ -174,10 +173,11 @@ TEST(ControllerPorts, GoalEndsAsAGoalResultOnTheActionsPort) {
   const CommandResult r = w->command("arm", kPlugin, "traj/follow_joint_trajectory", g);
   ASSERT_FALSE(r.refused) << r.reason;
   w->step(2100);
-  const OutputQueue out = w->take_outputs_if([](const Output& o) { return o.goal_result_sample() != nullptr; });
+  const OutputQueue out =
+      w->take_outputs_if([](const Output& o) { return o.sample_of<GoalResultSample>() != nullptr; });
   ASSERT_EQ(out.size(), 1u);
   EXPECT_EQ(out[0]->port, "traj/follow_joint_trajectory");
-  const GoalResultSample& s = *out[0]->goal_result_sample();
+  const GoalResultSample& s = *out[0]->sample_of<GoalResultSample>();
   EXPECT_EQ(s.goal, 42u);
   EXPECT_EQ(s.status, GoalResultSample::Status::Succeeded) << s.error_string;
   EXPECT_EQ(s.error_code, 0);

@@ -168,12 +168,13 @@ TEST(Tricycle, WheelJointStatesCarryZeroEfforts) {
   bool port = false;
   for (const auto& p : w.plugins())
     for (const auto& o : p.outputs)
-      if (o.type == SampleType::JointStates) port = o.with_effort;
+      if (o.type == sample_type<JointStatesSample>()) port = o.with_effort;
   EXPECT_TRUE(port);
   const auto outs = w.take_outputs();
   ASSERT_FALSE(outs.empty());
-  const std::vector<double>* e = outs.back()->joint_efforts_sample();
-  ASSERT_NE(e, nullptr);
-  EXPECT_EQ(*e, std::vector<double>(4, 0.0));
-  ASSERT_EQ(outs.back()->joint_states_sample()->size(), 4u);
+  const std::optional<JointStatesSample> s = outs.back()->sample_of<JointStatesSample>();
+  ASSERT_TRUE(s);
+  ASSERT_NE(s->efforts, nullptr);
+  EXPECT_EQ(*s->efforts, std::vector<double>(4, 0.0));
+  ASSERT_EQ(s->joints->size(), 4u);
 }
