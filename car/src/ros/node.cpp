@@ -276,8 +276,12 @@ void SimNode::publish_outputs() {
     const auto it = robot->second.find(o->plugin);
     if (it == robot->second.end()) continue;
     it->second.outputs->publish(std::move(o), *this);
-    if (it->second.polled) it->second.polled->poll();
   }
+  // inputs read from TF (hand_of_god's desired frame), every step as upstream looks them up in each update: a plug-in
+  // that sends nothing until it has its target would otherwise never be read (it was polled after its own outputs)
+  for (auto& [robot, plugins] : route_)
+    for (auto& [plugin, r] : plugins)
+      if (r.polled) r.polled->poll();
   if (tick % joint_state_period_ == 0) {
     for (auto& [name, io] : io_) {
       if (io.joint_states.getNumSubscribers() == 0) continue;
