@@ -43,6 +43,12 @@ void start_with_sim_time() {
   ros::Time::setNow(ros::Time(0, 0));
 }
 
+void SimNode::poll_tf_inputs() {
+  for (auto& [robot, plugins] : route_)
+    for (auto& [plugin, r] : plugins)
+      if (r.polled) r.polled->poll();
+}
+
 void SimNode::set_ros_time(uint64_t tick) {
   if (tick == ros_time_tick_) return;
   ros::Time::setNow(stamp(tick));
@@ -170,6 +176,10 @@ void SimNode::run() {
       pacer_.restart(clock::now(), world_->tick());
       repace_ = false;
     }
+    // inputs read from TF (hand_of_god's desired frame) before every step, as upstream looks them up in each
+    // WorldUpdateBegin: a plug-in that sends nothing until it has its target would otherwise never be read (they were
+    // polled after their plug-in's own output)
+    poll_tf_inputs();
     // the step's plug-in callbacks see the sim time of the step they run in, as World::SimTime() says
     // (WorldUpdateBegin counts the coming step): ros::Time::now() in a Gazebo plug-in is that time
     set_ros_time(world_->tick() + 1);
@@ -277,11 +287,6 @@ void SimNode::publish_outputs() {
     if (it == robot->second.end()) continue;
     it->second.outputs->publish(std::move(o), *this);
   }
-  // inputs read from TF (hand_of_god's desired frame), every step as upstream looks them up in each update: a plug-in
-  // that sends nothing until it has its target would otherwise never be read (it was polled after its own outputs)
-  for (auto& [robot, plugins] : route_)
-    for (auto& [plugin, r] : plugins)
-      if (r.polled) r.polled->poll();
   if (tick % joint_state_period_ == 0) {
     for (auto& [name, io] : io_) {
       if (io.joint_states.getNumSubscribers() == 0) continue;

@@ -149,6 +149,8 @@ class SimNode : public NodeContext {
   void publish_performance();
   // roscpp's time (ros::Time::now() in every thread of the process) to a tick's sim time, when it is not already
   void set_ros_time(uint64_t tick);
+  // every input port read from TF looks its transform up now (before a step)
+  void poll_tf_inputs();
 
   ros::NodeHandle nh_, pnh_, gz_;
   std::unique_ptr<car_sim::World> world_;
