@@ -59,9 +59,9 @@ SCENARIOS = {
                    [('/odom', Odometry), ('/joint_states', JointState)], '/odom'),
     'skid_steer_drive': ('upstream_plugins/skid.urdf', 10.0, [('/cmd_vel', Twist, lambda: twist(0.3, 0, 0.3))],
                          [('/odom', Odometry)], '/odom'),
-    'planar_move': ('plugin_frames/box.urdf', 10.0, [('/cmd_vel', Twist, lambda: twist(0.3, 0.1, 0.2))],
+    'planar_move': ('upstream_plugins/planar_box.urdf', 10.0, [('/cmd_vel', Twist, lambda: twist(0.3, 0.1, 0.2))],
                     [('/odom', Odometry), ('/truth', Odometry)], '/odom'),
-    'p3d': ('plugin_frames/box.urdf', 10.0, [('/cmd_vel', Twist, lambda: twist(0.3, 0.1, 0.2))],
+    'p3d': ('upstream_plugins/planar_box.urdf', 10.0, [('/cmd_vel', Twist, lambda: twist(0.3, 0.1, 0.2))],
             [('/odom', Odometry), ('/truth', Odometry)], '/truth'),
     'tricycle_drive': ('upstream_plugins/tricycle.urdf', 10.0, [('/cmd_vel', Twist, lambda: twist(0.4, 0, 0.3))],
                        [('/odom', Odometry)], '/odom'),
@@ -147,7 +147,7 @@ def main():
         with lock:
             for t in msg.transforms:
                 tf_edges.add((t.header.frame_id.lstrip('/'), t.child_frame_id.lstrip('/')))
-    rospy.Subscriber('/tf', TFMessage, on_tf, queue_size=100000)
+    tf_sub = rospy.Subscriber('/tf', TFMessage, on_tf, queue_size=100000)
     rospy.Subscriber('/tf_static', TFMessage, on_tf, queue_size=100)
     if name in ('hand_of_god', 'template', 'vacuum_gripper'):
         # hand_of_god's target: 0.5 m along x, 1 m up
@@ -161,7 +161,11 @@ def main():
     with open(os.path.join(DATA, urdf)) as f:
         xml = f.read()
     pose = Pose()
-    pose.position.z = 0.0 if 'arm' in urdf else (1.0 if 'force' in urdf or 'hog' in urdf else 0.05)
+    # at rest on the ground: the drives' base frames are at the wheels' contact (z 0), the box's at its centre (half
+    # its 0.2 m side). (At 0.05 m the drives fell for 0.1 s and landed with their wheels already turning, and the box
+    # began half in the ground.)
+    pose.position.z = {'upstream_plugins/planar_box.urdf': 0.1, 'upstream_plugins/force_box.urdf': 1.0,
+                       'upstream_plugins/hog_box.urdf': 1.0}.get(urdf, 0.0)
     pose.orientation.w = 1.0
     r = rospy.ServiceProxy('/gazebo/spawn_urdf_model', SpawnModel)(model_name='robot', model_xml=xml,
                                                                    robot_namespace='', initial_pose=pose,
@@ -179,6 +183,17 @@ def main():
     rospy.ServiceProxy('/gazebo/unpause_physics', Empty)()
     wait('%.1f s of sim time' % seconds, lambda: rospy.get_time() >= t0 + seconds, limit=600.0)
     rospy.ServiceProxy('/gazebo/pause_physics', Empty)()
+    # car's node advertises /tf at the first transform a plug-in sends (upstream's tf::TransformBroadcaster at Load):
+    # at rtf 0 the run may end before this subscriber is connected to it. Once connected, 0.2 s more of sim time lets
+    # the TF edges arrive (the trajectories are compared up to the scenario's end only)
+    start = time.monotonic()
+    while tf_sub.get_num_connections() == 0 and time.monotonic() - start < 5.0:
+        time.sleep(0.05)
+    if tf_sub.get_num_connections() > 0:
+        t1 = rospy.get_time()
+        rospy.ServiceProxy('/gazebo/unpause_physics', Empty)()
+        wait('0.2 s more of sim time', lambda: rospy.get_time() >= t1 + 0.2, limit=120.0)
+        rospy.ServiceProxy('/gazebo/pause_physics', Empty)()
     time.sleep(1.0)
     # what the plug-ins advertise: every topic and service of the node (less the probe's and car's own /gazebo/ API)
     state = rosgraph.Master('/upstream_plugins_probe').getSystemState()

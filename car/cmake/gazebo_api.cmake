@@ -69,4 +69,11 @@ if(CATKIN_ENABLE_TESTING AND TARGET test_core)
       LIBRARY_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/lib)
   endforeach()
   add_rostest(test/ros/gazebo_world_plugin.test DEPENDENCIES car_gz_test_node_world_factory car_gz_test_node_world_events)
+  # a model plug-in using roscpp as upstream's drives do (its own callback-queue thread), in the devel space's lib/
+  add_library(car_gz_test_node_ros_thread_probe MODULE EXCLUDE_FROM_ALL test/gazebo/plugins/ros_thread_probe.cc)
+  target_include_directories(car_gz_test_node_ros_thread_probe PRIVATE ${catkin_INCLUDE_DIRS})
+  target_link_libraries(car_gz_test_node_ros_thread_probe car_gazebo ${catkin_LIBRARIES})
+  set_target_properties(car_gz_test_node_ros_thread_probe PROPERTIES OUTPUT_NAME car_test_ros_thread_probe PREFIX "lib"
+    LIBRARY_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/lib)
+  add_rostest(test/ros/gazebo_ros_threads.test DEPENDENCIES car_gz_test_node_ros_thread_probe)
 endif()

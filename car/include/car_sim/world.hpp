@@ -189,10 +189,11 @@ class World {
   ModelProperties model_properties(const std::string& model) const;
   // A moving joint by "MODEL::JOINT" or plain "JOINT" (the first robot that has one).
   JointProperties joint_properties(const std::string& joint) const;
-  // Sets joint positions [rad] or [m] of a robot (speeds to zero); the root link stays where it is. Throws for an
-  // unknown model or joint or a non-finite position, before changing anything.
+  // Sets joint positions [rad] or [m] of a robot (their speeds to zero; keep_speeds: the speeds stay, as Gazebo's
+  // Joint::SetPosition with _preserveWorldVelocity); the root link stays where it is. Throws for an unknown model or
+  // joint or a non-finite position, before changing anything.
   void set_joint_positions(const std::string& model, const std::vector<std::string>& joints,
-                           const std::vector<double>& positions);
+                           const std::vector<double>& positions, bool keep_speeds = false);
   // Centre of mass [m], world frame, of the body that carries a link.
   Eigen::Vector3d body_com(const LinkRef& link) const;
   // Force [N] and torque [N m], world frame, at the carrying body's com, on every step that starts at a sim time t

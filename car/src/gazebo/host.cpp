@@ -2,10 +2,18 @@
 // and raises Gazebo's update events from two step hooks on car's world, in Gazebo 11's order: WorldUpdateBegin
 // (sim time counting the coming step), the models' joint controllers, BeforePhysicsUpdate (physics enabled), the
 // physics step, WorldUpdateEnd. docs/PLUGINS.md.
+#include <dirent.h>
+#include <sys/types.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <functional>
+#include <iostream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 #include "car_sim/shared_plugin.hpp"
 #include "car_sim/world.hpp"
@@ -27,8 +35,11 @@ std::map<car_sim::World*, std::weak_ptr<Hub>>& hubs() {
 }
 
 thread_local Hub* g_current = nullptr;
+thread_local const void* g_owner = nullptr;
 
 }  // namespace
+
+const void*& current_owner() { return g_owner; }
 
 gazebo::common::Time time_of(uint64_t tick, double dt) {
   const int64_t ns = car_sim::tick_time_ns(tick, dt);
@@ -44,8 +55,12 @@ Hub::Hub(car_sim::World* c) : core(c), world(new gazebo::physics::World(c)) {
     pause.fire(p);
   });
   stop_hook_ = core->add_stop_hook([this] {
+    // the parked plug-ins may hold the last references to this hub
+    std::shared_ptr<Hub> self = shared_from_this();
     CurrentHub in(this);
     stop.fire();
+    stopping = true;
+    parked.clear();
   });
 }
 
@@ -174,17 +189,114 @@ sdf::ElementPtr plugin_parent(const car_sim::SharedPluginContext& ctx, const sdf
   return p;
 }
 
+// ---- plug-ins' own threads -----------------------------------------------------------------------------------
+// Upstream gazebo_plugins' drives start a thread in Load that serves their own ros::CallbackQueue while ros::ok()
+// (and a flag only their FiniChild clears, which Gazebo 11 never calls); some destructors join it, some do not.
+// Gazebo deletes a model's plug-ins at once (Model::Fini); gzserver's end runs ros::shutdown (gazebo_ros's SigInt
+// event) before the world's Fini deletes them. car records the threads each plug-in starts in its Load and Init
+// (the process's thread ids before and after, /proc/self/task) and deletes a plug-in only once they have ended, or
+// at the world's end (docs/COMPAT-plugins.md "Plug-ins' threads").
+
+std::set<pid_t> thread_ids() {
+  std::set<pid_t> ids;
+  if (DIR* d = opendir("/proc/self/task")) {
+    while (dirent* e = readdir(d))
+      if (e->d_name[0] != '.') ids.insert(static_cast<pid_t>(std::stol(e->d_name)));
+    closedir(d);
+  }
+  return ids;
+}
+
+bool running(pid_t tid) { return access(("/proc/self/task/" + std::to_string(tid)).c_str(), F_OK) == 0; }
+
+bool any_running(const std::vector<pid_t>& tids) {
+  for (pid_t t : tids)
+    if (running(t)) return true;
+  return false;
+}
+
+// Waits for threads to end, at most `limit` of wall time; whether they did.
+bool wait_ended(const std::vector<pid_t>& tids, std::chrono::milliseconds limit) {
+  const auto until = std::chrono::steady_clock::now() + limit;
+  while (any_running(tids)) {
+    if (std::chrono::steady_clock::now() > until) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return true;
+}
+
+// The threads started while `fn` ran.
+template <class Fn>
+std::vector<pid_t> threads_started(Fn&& fn) {
+  const std::set<pid_t> before = thread_ids();
+  fn();
+  std::vector<pid_t> started;
+  for (pid_t t : thread_ids())
+    if (!before.count(t)) started.push_back(t);
+  return started;
+}
+
+// How long the world's end waits for a plug-in's threads: upstream's callback-queue threads look at ros::ok() every
+// 10 ms (a CallbackQueue::callAvailable timeout of 0.01 s)
+constexpr std::chrono::milliseconds kThreadEndLimit{2000};
+
+// A plug-in deleted once its threads have ended: at once when they have, else after waiting for them (the world's
+// end, where the node has shut roscpp down before), else, while the world goes on, kept in the hub ("parked") with
+// its callbacks cut, until the world's end.
+template <class Plugin>
+void delete_plugin(const std::shared_ptr<Hub>& hub, std::unique_ptr<Plugin>& plugin, const void* owner,
+                   const std::vector<pid_t>& threads, const std::string& what, std::shared_ptr<void> keep) {
+  if (!plugin) return;
+  CurrentHub in(hub.get());
+  if (any_running(threads)) {
+    if (!hub->stopping) {
+      hub->disconnect_owner(owner);
+      struct Parked {
+        std::shared_ptr<Hub> hub;
+        std::unique_ptr<Plugin> plugin;
+        std::vector<pid_t> threads;
+        std::string what;
+        std::shared_ptr<void> keep;
+        ~Parked() {
+          CurrentHub in(hub.get());
+          if (!wait_ended(threads, kThreadEndLimit))
+            std::cerr << "[Wrn] car: " << what << ": its threads still run " << kThreadEndLimit.count()
+                      << " ms after the world's end; it is deleted anyway" << std::endl;
+          plugin.reset();
+        }
+      };
+      auto parked = std::make_shared<Parked>();
+      parked->hub = hub;
+      parked->plugin = std::move(plugin);
+      parked->threads = threads;
+      parked->what = what;
+      parked->keep = std::move(keep);
+      hub->parked.push_back(std::move(parked));
+      return;
+    }
+    if (!wait_ended(threads, kThreadEndLimit))
+      std::cerr << "[Wrn] car: " << what << ": its threads still run " << kThreadEndLimit.count()
+                << " ms after the world's end; it is deleted anyway" << std::endl;
+  }
+  plugin.reset();  // its connections go with it, while the hub is there
+}
+
 // A plug-in (model, world or system) with what keeps its world's events going while it lives.
 class Running : public car_sim::SharedPlugin {
  public:
   ~Running() override {
-    CurrentHub in(hub.get());
-    plugin.reset();  // its connections go with it, while the hub is there
+    // the model handle and the SDF stay with a parked plug-in (it may still read them)
+    delete_plugin(hub, plugin, this, threads, what,
+                  std::make_shared<std::pair<gazebo::physics::ModelPtr, sdf::ElementPtr>>(model, sdf_parent));
   }
   void reset() override {
     CurrentHub in(hub.get());
+    CurrentOwner as(this);
     if (do_reset) do_reset();
   }
+  // the threads its Load and Init started; what it is, for messages
+  std::vector<pid_t> threads;
+  std::string what;
   std::shared_ptr<Hub> hub;
   gazebo::physics::ModelPtr model;
   sdf::ElementPtr sdf_parent;
@@ -284,6 +396,9 @@ class Host : public car_sim::SharedPluginHost {
     auto run = std::make_unique<Running>();
     run->hub = Hub::of(ctx.world);
     CurrentHub in(run->hub.get());
+    CurrentOwner as(run.get());
+    run->what = "plug-in '" + ctx.name + "' (" + ctx.filename + ")" +
+                (ctx.place == car_sim::PluginPlace::Model ? " of model '" + ctx.model + "'" : std::string());
     run->plugin.reset(make_plugin(register_fn));
     if (!run->plugin) throw std::runtime_error("RegisterPlugin returned no plug-in");
     run->plugin->filename = ctx.filename;
@@ -295,11 +410,13 @@ class Host : public car_sim::SharedPluginHost {
           throw wrong_type("Model[" + ctx.model + "]", ctx, run->plugin.get(),
                            "a model's <plugin> takes a model plug-in (GZ_REGISTER_MODEL_PLUGIN)");
         run->model = run->hub->world->ModelByName(ctx.model);
-        guarded([&] {
-          const sdf::ElementPtr sdf = plugin_sdf(ctx);
-          run->sdf_parent = plugin_parent(ctx, sdf);
-          p->Load(run->model, sdf);
-          p->Init();
+        run->threads = threads_started([&] {
+          guarded([&] {
+            const sdf::ElementPtr sdf = plugin_sdf(ctx);
+            run->sdf_parent = plugin_parent(ctx, sdf);
+            p->Load(run->model, sdf);
+            p->Init();
+          });
         });
         run->do_reset = [p] { p->Reset(); };
         break;
@@ -309,9 +426,11 @@ class Host : public car_sim::SharedPluginHost {
         if (!p)
           throw wrong_type("World[" + run->hub->world->Name() + "]", ctx, run->plugin.get(),
                            "a <plugin> in <world> takes a world plug-in (GZ_REGISTER_WORLD_PLUGIN)");
-        guarded([&] {
-          p->Load(run->hub->world, plugin_sdf(ctx));
-          p->Init();
+        run->threads = threads_started([&] {
+          guarded([&] {
+            p->Load(run->hub->world, plugin_sdf(ctx));
+            p->Init();
+          });
         });
         run->do_reset = [p] { p->Reset(); };
         break;
@@ -324,9 +443,11 @@ class Host : public car_sim::SharedPluginHost {
         run->args = ctx.args;
         for (auto& a : run->args) run->argv.push_back(a.data());
         run->argv.push_back(nullptr);
-        guarded([&] {
-          p->Load(static_cast<int>(run->args.size()), run->argv.data());
-          p->Init();
+        run->threads = threads_started([&] {
+          guarded([&] {
+            p->Load(static_cast<int>(run->args.size()), run->argv.data());
+            p->Init();
+          });
         });
         break;
       }

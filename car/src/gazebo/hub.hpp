@@ -18,14 +18,34 @@
 
 namespace car_gazebo {
 
+// The plug-in whose code runs now on this thread (its Load, Init, Reset or one of its event callbacks; null: none).
+// A connection belongs to the plug-in that makes it, so that a plug-in kept after its model went (host.cpp, "parked")
+// is cut from every event.
+const void*& current_owner();
+class CurrentOwner {
+ public:
+  explicit CurrentOwner(const void* owner) : previous_(current_owner()) { current_owner() = owner; }
+  ~CurrentOwner() { current_owner() = previous_; }
+
+ private:
+  const void* previous_;
+};
+
 // One event's callbacks, in the order connected. A callback may disconnect (itself or another) while the event
 // runs: it is marked and dropped afterwards.
 template <class... Args>
 class SlotList {
  public:
   int connect(std::function<void(Args...)> fn) {
-    slots_.push_back(std::make_unique<Slot>(Slot{next_, std::move(fn), false}));
+    slots_.push_back(std::make_unique<Slot>(Slot{next_, std::move(fn), false, current_owner()}));
     return next_++;
+  }
+  // Disconnects every callback a plug-in connected.
+  void disconnect_owner(const void* owner) {
+    for (auto& s : slots_)
+      if (s->owner == owner) s->removed = true;
+    dirty_ = true;
+    if (!running_) drop();
   }
   void disconnect(int id) {
     for (auto& s : slots_)
@@ -39,7 +59,10 @@ class SlotList {
     const size_t n = slots_.size();
     try {
       for (size_t k = 0; k < n; ++k)
-        if (!slots_[k]->removed) slots_[k]->fn(args...);
+        if (!slots_[k]->removed) {
+          CurrentOwner as(slots_[k]->owner);
+          slots_[k]->fn(args...);
+        }
     } catch (...) {
       running_ = false;
       drop();
@@ -55,6 +78,7 @@ class SlotList {
     int id;
     std::function<void(Args...)> fn;
     bool removed;
+    const void* owner;
   };
   void drop() {
     if (!dirty_) return;
@@ -85,6 +109,19 @@ class Hub : public std::enable_shared_from_this<Hub> {
   SlotList<bool> pause;
   // whether an update event is running (work that must not run inside a step is deferred)
   bool in_step = false;
+  // the world's end has begun (its stop event ran): plug-ins are deleted from now on, none is parked
+  bool stopping = false;
+  // Plug-ins kept after their model went, because threads they started still ran (host.cpp): cut from every event,
+  // deleted at the world's end once those threads have ended.
+  std::vector<std::shared_ptr<void>> parked;
+  // Cuts a plug-in's callbacks from every event.
+  void disconnect_owner(const void* owner) {
+    begin.disconnect_owner(owner);
+    before.disconnect_owner(owner);
+    end.disconnect_owner(owner);
+    stop.disconnect_owner(owner);
+    pause.disconnect_owner(owner);
+  }
 
   // Gazebo's factory: a model's SDF text (or a file, by its URI) inserted at the end of the next step, named
   // `name` when given (else the document's), at `pose` when given (else the document's). Errors are gzerr lines, as

@@ -434,12 +434,12 @@ double Joint::GetForce(unsigned int _index) {
 
 bool Joint::SetPosition(const unsigned int _index, const double _position, const bool _preserveWorldVelocity) {
   if (bad_index(_index, name)) return false;
-  if (_preserveWorldVelocity) {
-    gzerr << "Joint::SetPosition with _preserveWorldVelocity true is not offered by car (joint [" << name << "])\n";
-    return false;
-  }
+  // Gazebo's Joint::SetPositionMaximal: the position is held within the joint's limits first
+  const double position = lower < upper ? std::clamp(_position, lower, upper) : std::clamp(_position, upper, lower);
   ModelPtr m = model.lock();
-  core_of(m->GetWorld()).set_joint_positions(m->GetName(), {name}, {_position});
+  // _preserveWorldVelocity (ODE: each moved link keeps its world velocity; Link::MoveFrame): car's joints are
+  // coordinates, so the joint's speed is kept, and with it the child's angular velocity about the joint's axis
+  core_of(m->GetWorld()).set_joint_positions(m->GetName(), {name}, {position}, _preserveWorldVelocity);
   return true;
 }
 

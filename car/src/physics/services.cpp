@@ -11,11 +11,11 @@
 namespace car_sim {
 namespace physics {
 
-void set_joint_positions(Robot& robot, const std::map<int, double>& positions) {
+void set_joint_positions(Robot& robot, const std::map<int, double>& positions, bool keep_speeds) {
   btMultiBody* mb = robot.multibody();
   for (const auto& [joint, q] : positions) {
     mb->setJointPos(joint, q);
-    mb->setJointVel(joint, 0.0);
+    if (!keep_speeds) mb->setJointVel(joint, 0.0);
   }
   btAlignedObjectArray<btQuaternion> q;
   btAlignedObjectArray<btVector3> v;

@@ -13,7 +13,7 @@ namespace physics {
 
 // Sets joints (multibody link index -> position [rad] or [m]) and zeroes their speeds; the base stays where it
 // is. Colliders follow at once.
-void set_joint_positions(Robot& robot, const std::map<int, double>& positions);
+void set_joint_positions(Robot& robot, const std::map<int, double>& positions, bool keep_speeds = false);
 // Centre of mass [m], world frame, of the body that carries `link` (fixed joints merge links into one body).
 Eigen::Vector3d body_com(const Robot& robot, const std::string& link);
 // Adds a wrench for the next step on the body that carries `link`: force [N] and torque [N m], world frame, at

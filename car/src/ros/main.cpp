@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
   // tutorial), and a node stopped by roslaunch would lose a full buffer
   setvbuf(stdout, nullptr, _IOLBF, 0);
   ros::init(argc, argv, "gazebo");
+  // before any NodeHandle: roscpp's time is the node's sim time, set by the node (docs/COMPAT-plugins.md)
+  car_ros::start_with_sim_time();
   car_ros::SimNode node;
   if (!node.init()) return 1;
   // a restarted roscore gets this node's topics and services again, and the node's own /use_sim_time

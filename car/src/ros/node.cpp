@@ -3,12 +3,14 @@
 #include "node.hpp"
 
 #include <ros/callback_queue.h>
+#include <ros/names.h>
 #include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/JointState.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <thread>
 
 #include "conversions.hpp"
@@ -18,6 +20,40 @@ namespace car_ros {
 
 // gz_: gazebo_ros's api plug-in advertises in its node's private namespace; launch files name the node gazebo
 SimNode::SimNode() : nh_(), pnh_("~"), gz_("~") {}
+
+// roscpp's ros::start() (init.cpp) reads /use_sim_time and, when it is true, sets the time to 0 and subscribes its
+// own clockCallback to /clock on its internal queue's thread, which calls ros::Time::setNow with each /clock heard.
+// The node publishes /clock after its steps, so that callback would set the time back, at moments of another
+// thread's choosing, to a /clock older than the step running. So ros::start() reads /use_sim_time under a name no one
+// sets (a remapping, roscpp's param::param resolves names through it, dropped again at once): no subscriber is made,
+// and the node alone sets the time, ros::Time::setNow before each step (rostime's time.cpp: setNow also switches
+// ros::Time::now() to the value set).
+void start_with_sim_time() {
+  auto& remappings = const_cast<ros::M_string&>(ros::names::getRemappings());
+  const std::string key = "/use_sim_time";
+  const auto had = remappings.find(key);
+  const std::optional<std::string> before = had == remappings.end() ? std::nullopt : std::optional(had->second);
+  remappings[key] = "/car_sim_node/roscpp_clock_subscriber_off";
+  ros::start();
+  if (before)
+    remappings[key] = *before;
+  else
+    remappings.erase(key);
+  // sim time 0, as roscpp's own start with /use_sim_time
+  ros::Time::setNow(ros::Time(0, 0));
+}
+
+void SimNode::poll_tf_inputs() {
+  for (auto& [robot, plugins] : route_)
+    for (auto& [plugin, r] : plugins)
+      if (r.polled) r.polled->poll();
+}
+
+void SimNode::set_ros_time(uint64_t tick) {
+  if (tick == ros_time_tick_) return;
+  ros::Time::setNow(stamp(tick));
+  ros_time_tick_ = tick;
+}
 
 ros::Time SimNode::stamp(uint64_t tick) const { return sim_time(tick, world_->dt()); }
 
@@ -101,6 +137,8 @@ void SimNode::run() {
       publisher_.flush();
       ros::spinOnce();
     }
+    // a reset_simulation took the time back: so goes roscpp's
+    set_ros_time(world_->tick());
     if (world_->paused()) {
       repace_ = true;
       // models a plug-in inserted come in while paused too, as Gazebo's World::Step processes its messages
@@ -139,6 +177,13 @@ void SimNode::run() {
       pacer_.restart(clock::now(), world_->tick());
       repace_ = false;
     }
+    // inputs read from TF (hand_of_god's desired frame) before every step, as upstream looks them up in each
+    // WorldUpdateBegin: a plug-in that sends nothing until it has its target would otherwise never be read (they were
+    // polled after their plug-in's own output)
+    poll_tf_inputs();
+    // the step's plug-in callbacks see the sim time of the step they run in, as World::SimTime() says
+    // (WorldUpdateBegin counts the coming step): ros::Time::now() in a Gazebo plug-in is that time
+    set_ros_time(world_->tick() + 1);
     try {
       world_->step(1);
     } catch (const car_sim::SimulationError& e) {
@@ -242,7 +287,6 @@ void SimNode::publish_outputs() {
     const auto it = robot->second.find(o->plugin);
     if (it == robot->second.end()) continue;
     it->second.outputs->publish(std::move(o), *this);
-    if (it->second.polled) it->second.polled->poll();
   }
   if (tick % joint_state_period_ == 0) {
     for (auto& [name, io] : io_) {

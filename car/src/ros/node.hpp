@@ -54,6 +54,9 @@ void add_exported_model_paths();
 // dropin.cpp: a world name as gzserver resolves it: a path as given, else under each GAZEBO_RESOURCE_PATH entry,
 // else "worlds/empty.world" = "" (car's built-in empty world); throws car_sim::LoadError naming what was searched.
 std::string resolve_world_name(const std::string& name);
+// node.cpp: ros::start() without roscpp's own /clock subscriber, then roscpp's time at sim time 0. The node sets
+// roscpp's time itself, to the step's sim time (ros::Time::setNow; docs/COMPAT-plugins.md "ROS time in car's node").
+void start_with_sim_time();
 
 class SimNode : public NodeContext {
  public:
@@ -152,6 +155,10 @@ class SimNode : public NodeContext {
   // dropin.cpp: the rest of gazebo_ros's API surface (docs/COMPAT-dropins.md)
   void advertise_dropin();
   void publish_performance();
+  // roscpp's time (ros::Time::now() in every thread of the process) to a tick's sim time, when it is not already
+  void set_ros_time(uint64_t tick);
+  // every input port read from TF looks its transform up now (before a step)
+  void poll_tf_inputs();
 
   ros::NodeHandle nh_, pnh_, gz_;
   std::unique_ptr<car_sim::World> world_;
@@ -188,6 +195,7 @@ class SimNode : public NodeContext {
   ros::Publisher performance_pub_;
   std::chrono::steady_clock::time_point perf_wall_ = std::chrono::steady_clock::now();
   uint64_t perf_tick_ = 0;
+  uint64_t ros_time_tick_ = 0;  // the tick whose sim time roscpp's time is (start_with_sim_time: 0)
   // What waits in roscpp's publish queues: at most 32 MB (three Kinect clouds) before the publishing thread waits
   // for roscpp's poll thread (poll_gate.hpp). Destroyed after publisher_, whose last jobs pass through it.
   PollGate roscpp_{32u << 20};

@@ -886,7 +886,7 @@ JointProperties World::joint_properties(const std::string& name) const {
 }
 
 void World::set_joint_positions(const std::string& model, const std::vector<std::string>& joints,
-                                const std::vector<double>& positions) {
+                                const std::vector<double>& positions, bool keep_speeds) {
   if (joints.size() != positions.size())
     throw std::invalid_argument("joint name and position list have different lengths");
   auto* r = impl_->find(model);
@@ -902,7 +902,7 @@ void World::set_joint_positions(const std::string& model, const std::vector<std:
       throw std::invalid_argument("joint '" + joints[i] + "': position must be finite");
     set[j] = positions[i];
   }
-  physics::set_joint_positions(*r->body, set);
+  physics::set_joint_positions(*r->body, set, keep_speeds);
   impl_->phys->invalidate_rays();
 }
 

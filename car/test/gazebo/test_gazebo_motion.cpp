@@ -20,14 +20,15 @@ const std::string kDir = CAR_GAZEBO_TEST_PLUGINS;
 // The box with (wheel true) its wheel 1 m above on axle, the motion plug-in in the given mode (and extra elements),
 // at (0, 0, 5) in an empty world with gravity g [m/s^2] along -z.
 std::unique_ptr<World> box_with(const std::string& mode, const std::string& extra = "", bool wheel = true,
-                                double g = 0.0) {
+                                double g = 0.0, const std::string& axle = "continuous") {
+  const std::string limits = axle == "revolute" ? R"(lower="-1" upper="1" )" : "";
   const std::string wheel_xml = R"(
   <link name="wheel">
     <inertial><mass value="1"/><inertia ixx="0.5" iyy="0.5" izz="0.5" ixy="0" ixz="0" iyz="0"/></inertial>
     <collision><geometry><cylinder radius="0.1" length="0.05"/></geometry></collision>
   </link>
-  <joint name="axle" type="continuous"><parent link="body"/><child link="wheel"/><origin xyz="0 0 1"/>
-    <axis xyz="0 0 1"/><limit effort="100" velocity="100"/></joint>)";
+  <joint name="axle" type=")" + axle + R"("><parent link="body"/><child link="wheel"/><origin xyz="0 0 1"/>
+    <axis xyz="0 0 1"/><limit )" + limits + R"(effort="100" velocity="100"/></joint>)";
   const std::string urdf = R"(<?xml version="1.0"?>
 <robot name="box">
   <link name="body">
@@ -140,4 +141,25 @@ TEST(GazeboLoad, GzthrowInLoadIsAnErrorWithItsText) {
   EXPECT_EQ(diags(*w, "plugin-not-loaded"),
             std::vector<std::string>{"plug-in 'm' of model 'box' failed to load: Load threw: no <bodyName> given; the "
                                      "model goes on without it"});
+}
+
+// Joint::SetPosition (Gazebo's Joint::SetPositionMaximal): _preserveWorldVelocity true keeps the 2 rad/s the joint
+// had (the wheel's angular velocity about the axle: upstream's tricycle steers so every update); false zeroes it.
+TEST(GazeboJoint, SetPositionPreservingTheWorldVelocityKeepsTheJointSpeed) {
+  motion_log();
+  auto w = box_with("set_position", "<position>0.5</position><preserve>true</preserve>");
+  EXPECT_EQ(motion_log(), "ok=1 position=0.5 velocity=2");
+}
+
+TEST(GazeboJoint, SetPositionWithoutPreservingZeroesTheJointSpeed) {
+  motion_log();
+  auto w = box_with("set_position", "<position>0.5</position><preserve>false</preserve>");
+  EXPECT_EQ(motion_log(), "ok=1 position=0.5 velocity=0");
+}
+
+// A position beyond the joint's limits [-1, 1] rad is held at the limit, as SetPositionMaximal clamps it.
+TEST(GazeboJoint, SetPositionHoldsThePositionWithinTheLimits) {
+  motion_log();
+  auto w = box_with("set_position", "<position>1.5</position><preserve>true</preserve>", true, 0.0, "revolute");
+  EXPECT_EQ(motion_log(), "ok=1 position=1 velocity=2");
 }

@@ -67,7 +67,9 @@ class ApiLists(unittest.TestCase):
 
     def test_lists_and_types_match_the_doc(self):
         want = expected(self.network)
-        self.assertGreater(len(want), 4)
+        # the doc's table was read: with enable_ros_network false it has 4 rows (/clock, /rosout, the two logger
+        # services), with it true more
+        self.assertGreaterEqual(len(want), 4)
         wait_ready(self.network)
         model = rospy.get_param('~wait_model', '')
         if model:

@@ -87,16 +87,17 @@ class DiffDrive : public Plugin, public TwistDrive {
       ramp_.update(target, current, cfg_.wheel_acceleration, clock_.since(ctx.tick, ctx.dt), motor);
       for (int side = 0; side < 2; ++side) omega_[side] = motor[side] / rad;
     }
-    // The wheel motors are velocity motors (as Gazebo's) that also pull gently toward the angle their target
-    // speed integrates to. An iterative solver leaves a small velocity error each step; without this anchor it
-    // would add up to a creep of about 0.3 mm per 10 s at rest. The anchor stays within kAnchorWindow of the
-    // actual angle, so a wheel that slips or is blocked never winds up.
+    // The wheel motors are velocity motors, as ODE's joint motor that upstream sets (SetParam "vel", "fmax"). Held
+    // at a target of 0 they also pull gently toward the angle their target integrates to: an iterative solver
+    // leaves a small velocity error each step, which would add up to a creep of about 0.3 mm per 10 s at rest. The
+    // anchor stays within kAnchorWindow of the actual angle, so a wheel that slips or is blocked never winds up; it
+    // is off while the target is not 0 (it pulled a lagging wheel ahead of upstream's: 2 cm over a 10 s circle).
     constexpr double kAnchorWindow = 0.02;  // [rad]
     constexpr double kAnchorGain = 0.05;    // [-] fraction of the angle error corrected per step
     for (int side = 0; side < 2; ++side) {
       const double q = robot.joint_position(joint_[side]);
       q_ref_[side] = std::clamp(q_ref_[side] + omega_[side] * ctx.dt, q - kAnchorWindow, q + kAnchorWindow);
-      robot.set_motor(motor_[side], {omega_[side], 1.0, q_ref_[side], kAnchorGain});
+      robot.set_motor(motor_[side], {omega_[side], 1.0, q_ref_[side], omega_[side] == 0.0 ? kAnchorGain : 0.0});
     }
   }
 

@@ -61,13 +61,14 @@ class SkidSteer : public Plugin, public TwistDrive {
       wheel_speeds(cmd_v_, cmd_w_, separation_, &left, &right);
       for (int i = 0; i < 4; ++i) omega_[i] = (i % 2 == 0 ? left : right) / radius_;
     }
-    // velocity motors with the diff drive's anchor toward the integrated target angle (no creep at rest)
+    // velocity motors (ODE's, as upstream sets them) with the diff drive's anchor toward the integrated target angle
+    // while the target is 0 (no creep at rest)
     constexpr double kAnchorWindow = 0.02;  // [rad]
     constexpr double kAnchorGain = 0.05;    // [-] fraction of the angle error corrected per step
     for (int i = 0; i < 4; ++i) {
       const double q = robot.joint_position(joint_[i]);
       q_ref_[i] = std::clamp(q_ref_[i] + omega_[i] * ctx.dt, q - kAnchorWindow, q + kAnchorWindow);
-      robot.set_motor(motor_[i], {omega_[i], 1.0, q_ref_[i], kAnchorGain});
+      robot.set_motor(motor_[i], {omega_[i], 1.0, q_ref_[i], omega_[i] == 0.0 ? kAnchorGain : 0.0});
     }
   }
 

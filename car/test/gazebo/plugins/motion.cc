@@ -9,6 +9,8 @@
 //   physics_off: SetPhysicsEnabled(false) in Load.
 //   gzthrow: gzthrow in Load.
 //   bad_param: SetParam("erp", 0, 0.2) and SetParam("fmax", 0, 1) (an int); logs both results.
+//   set_position: SetVelocity(0, 2) on axle, then SetPosition(0, <position>, <preserve>) in Load; logs the result,
+//            Position and GetVelocity.
 #include <gazebo/common/common.hh>
 #include <gazebo/gazebo.hh>
 #include <gazebo/physics/physics.hh>
@@ -59,6 +61,10 @@ class Motion : public ModelPlugin {
       _model->GetWorld()->SetPhysicsEnabled(false);
     } else if (mode == "gzthrow") {
       gzthrow("no <bodyName> given");
+    } else if (mode == "set_position") {
+      axle->SetVelocity(0, 2.0);
+      const bool ok = axle->SetPosition(0, _sdf->Get<double>("position"), _sdf->Get<bool>("preserve"));
+      g_log << "ok=" << ok << " position=" << axle->Position(0) << " velocity=" << axle->GetVelocity(0);
     } else if (mode == "bad_param") {
       const bool erp = axle->SetParam("erp", 0, 0.2);
       const bool as_int = axle->SetParam("fmax", 0, 1);
