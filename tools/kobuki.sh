@@ -3,7 +3,7 @@
 # UNCHANGED against car's Gazebo API (docs/PLUGINS.md), and checks what the robot does (tools/kobuki_probe.py):
 # /mobile_base/commands/velocity moves it, /odom and the IMU publish, the bumper reports against a wall, the cliff
 # sensor reports at an edge. Fetches nothing: it takes git directories (or checkouts) of the repositories. Not in
-# CI. docs/ROBOTS.md "Kobuki" has the table of the last run.
+# CI. docs/PLUGINS.md "Kobuki, with its own plug-in built unchanged" has the table of the last run.
 #
 #   tools/kobuki.sh MIRROR_DIR
 #
