@@ -3,7 +3,7 @@
 # UNCHANGED against car's Gazebo API (docs/PLUGINS.md), and checks what the robot does (tools/kobuki_probe.py):
 # /mobile_base/commands/velocity moves it, /odom and the IMU publish, the bumper reports against a wall, the cliff
 # sensor reports at an edge. Fetches nothing: it takes git directories (or checkouts) of the repositories. Not in
-# CI. docs/ROBOTS.md "Kobuki" has the table of the last run.
+# CI. docs/PLUGINS.md "Kobuki, with its own plug-in built unchanged" has the table of the last run.
 #
 #   tools/kobuki.sh MIRROR_DIR
 #
@@ -13,19 +13,29 @@
 #                                  kobuki_gazebo, kobuki_gazebo_plugins
 #   yujinrobot+kobuki (melodic)    kobuki_description
 #   yujinrobot+kobuki_msgs (noetic)  kobuki_msgs
-# Needs car's workspace built and sourced (source .ws/devel/setup.bash), and Debian's liburdf-dev (kobuki_description
-# finds the catkin package urdf). The scratch workspace goes to /tmp.
+# Needs car's workspace built and sourced (source .ws/devel/setup.bash), and two Debian packages tools/setup.sh does
+# not install: liburdf-dev (kobuki_description's find_package(catkin COMPONENTS urdf): urdfConfig.cmake) and
+# libtf-dev (the plug-in's tf/transform_broadcaster.h); without them it says so and stops. The scratch workspace
+# goes to /tmp.
 # robot.launch.xml's nodelet manager is not provided (roslaunch names it and goes on): nothing of the checks uses it.
 set -u
 
 if [ $# -lt 1 ]; then
-  sed -n '2,19p' "$0"
+  sed -n '2,21p' "$0"
   exit 2
 fi
 MIRROR=$(realpath "$1")
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 if [ -z "${CMAKE_PREFIX_PATH:-}" ] || ! rospack find car > /dev/null 2>&1; then
   echo "kobuki: source car's workspace first (source $ROOT/.ws/devel/setup.bash)" >&2
+  exit 2
+fi
+missing=""
+[ -f /usr/include/urdf/model.h ] || missing+=" liburdf-dev"
+[ -f /usr/include/tf/transform_broadcaster.h ] || missing+=" libtf-dev"
+if [ -n "$missing" ]; then
+  echo "kobuki: kobuki_description and kobuki_gazebo_plugins need Debian packages that are not installed:$missing" >&2
+  echo "kobuki: apt-get install$missing" >&2
   exit 2
 fi
 WS=$(mktemp -d /tmp/car_kobuki.XXXXXX)

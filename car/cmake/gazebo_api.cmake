@@ -5,8 +5,8 @@
 find_package(ignition-math6 REQUIRED)  # Debian's libignition-math-dev (sdformat 12's maths)
 find_package(Boost REQUIRED)           # boost::shared_ptr, as Gazebo 11's pointer types
 
-add_library(car_gazebo src/gazebo/common.cpp src/gazebo/factory.cpp src/gazebo/host.cpp src/gazebo/physics.cpp
-            src/gazebo/motion.cpp src/gazebo/sensors.cpp)
+add_library(car_gazebo src/gazebo/common.cpp src/gazebo/entity.cpp src/gazebo/factory.cpp src/gazebo/host.cpp
+            src/gazebo/physics.cpp src/gazebo/motion.cpp src/gazebo/sensors.cpp src/gazebo/transport.cpp)
 target_include_directories(car_gazebo PUBLIC include/gazebo_api ${Boost_INCLUDE_DIRS} PRIVATE src/gazebo)
 target_link_libraries(car_gazebo PUBLIC car_sim sdformat12::sdformat12 ignition-math6::ignition-math6)
 set_target_properties(car_gazebo PROPERTIES POSITION_INDEPENDENT_CODE ON)
@@ -32,7 +32,8 @@ add_dependencies(bench_gazebo car_bench_empty_update)
 if(CATKIN_ENABLE_TESTING AND TARGET test_core)
   set(_car_gz_plugins ${CMAKE_CURRENT_BINARY_DIR}/gazebo_test_plugins)
   foreach(_p hello_world model_push parameters velocity_pid throws_in_load forces motion world_hello world_factory
-           world_events world_parameters system_args sensor_probe sensor_finder)
+           world_events world_parameters system_args sensor_probe sensor_finder entity
+           transport_probe)
     add_library(car_gz_test_${_p} MODULE EXCLUDE_FROM_ALL test/gazebo/plugins/${_p}.cc)
     target_link_libraries(car_gz_test_${_p} car_gazebo)
     set_target_properties(car_gz_test_${_p} PROPERTIES OUTPUT_NAME ${_p} PREFIX "lib"

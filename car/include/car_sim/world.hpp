@@ -113,6 +113,10 @@ class World {
   void reset();
   // Models back to where they started, time goes on (reset_world).
   void reset_poses();
+  // Time to zero, nothing else reset: the models, their motors and the plug-ins' state stay; every plug-in's schedule
+  // and clock restart from tick 0 (Gazebo's World::ResetTime and its time-reset event). Wrench and effort jobs keep
+  // their sim times, as gazebo_ros's do.
+  void reset_time();
 
   std::vector<std::string> model_names() const;  // world models first, then robots in spawn order
   bool has_model(const std::string& name) const;

@@ -3,7 +3,9 @@
 #pragma once
 
 #include <cstdint>
+#include <boost/shared_ptr.hpp>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -135,7 +137,25 @@ class Hub : public std::enable_shared_from_this<Hub> {
   // The hub of the world named `name` ("" or the current one's name: the current one); null when none.
   static Hub* named(const std::string& name);
 
+  // car's transport within this world (docs/PLUGINS.md "Transport"): subscribers by topic and message type; a
+  // published message goes to the subscribers of its topic and type present now, at the end of the step (deferred
+  // work); the topic's last message is kept for latching subscribers.
+  using Delivery = std::function<void(const boost::shared_ptr<const void>&)>;
+  int subscribe(const std::string& topic, const std::string& type, Delivery cb, bool latching);
+  void unsubscribe(int id);
+  void publish(const std::string& topic, const std::string& type, boost::shared_ptr<const void> msg);
+
  private:
+  struct Subscription {
+    int id;
+    std::string topic, type;
+    Delivery cb;
+  };
+  std::vector<Subscription> subscriptions_;
+  int next_subscription_ = 0;
+  std::map<std::string, std::pair<std::string, boost::shared_ptr<const void>>> latest_;  // topic -> (type, message)
+  // delivers msg to those of `ids` still subscribed (at the delivery point)
+  void deliver(const std::vector<int>& ids, const boost::shared_ptr<const void>& msg);
   void before_physics(uint64_t tick);
   void after_physics(uint64_t tick);
   gazebo::common::UpdateInfo info_;

@@ -93,13 +93,17 @@ std::string PhysicsEngine::GetType() const { return "bullet"; }
 
 // ---- Model -------------------------------------------------------------------------------------------------
 
-Model::Model(WorldPtr _world, const std::string& _name) : world(_world), name(_name) {}
+Model::Model(WorldPtr _world, const std::string& _name) : Entity(_world ? _world->Root() : BasePtr()) {
+  name = _name;
+  world = _world;
+  AddType(MODEL);
+}
 Model::~Model() = default;
 
 void Model::Build() {
   car_sim::World& w = core_of(world.lock());
   const car_sim::RobotModel& m = robot_model(w, name);
-  ModelPtr self = shared_from_this();
+  ModelPtr self = boost::static_pointer_cast<Model>(shared_from_this());
   // the root first: Gazebo's canonical link
   for (const auto& l : m.links) links.push_back(LinkPtr(new Link(self, l.name)));
   for (const auto& j : m.joints)
@@ -110,11 +114,6 @@ void Model::Build() {
   sdf->GetAttribute("name")->SetFromString(name);
 }
 
-std::string Model::GetName() const { return name; }
-std::string Model::GetScopedName(bool _prependWorldName) const {
-  return _prependWorldName ? core_of(world.lock()).description().name + "::" + name : name;
-}
-WorldPtr Model::GetWorld() const { return world.lock(); }
 const sdf::ElementPtr Model::GetSDF() { return sdf; }
 
 LinkPtr Model::GetLink(const std::string& _name) const {
@@ -140,9 +139,10 @@ unsigned int Model::GetJointCount() const { return static_cast<unsigned int>(joi
 
 JointControllerPtr Model::GetJointController() {
   if (!controller) {
-    controller.reset(new JointController(shared_from_this()));
+    ModelPtr self = boost::static_pointer_cast<Model>(shared_from_this());
+    controller.reset(new JointController(self));
     for (const auto& j : joints) controller->AddJoint(j);
-    if (WorldPtr w = world.lock()) w->AddControlled(shared_from_this());
+    if (WorldPtr w = world.lock()) w->AddControlled(self);
   }
   return controller;
 }
@@ -181,7 +181,9 @@ bool Model::IsStatic() const { return false; }
 
 // ---- Link --------------------------------------------------------------------------------------------------
 
-Link::Link(ModelPtr _model, const std::string& _name) : model(_model), name(_name), inertial(new Inertial) {
+Link::Link(ModelPtr _model, const std::string& _name) : Entity(_model), model(_model), inertial(new Inertial) {
+  name = _name;
+  AddType(LINK);
   car_sim::World& w = core_of(_model->GetWorld());
   const car_sim::LinkProperties p = w.link_properties({_model->GetName(), name, true});
   inertial->mass = p.mass;
@@ -206,16 +208,7 @@ LinkAt at(const boost::weak_ptr<Model>& m, const std::string& link) {
 
 }  // namespace
 
-std::string Link::GetName() const { return name; }
-std::string Link::GetScopedName(bool _prependWorldName) const {
-  ModelPtr m = model.lock();
-  return (m ? m->GetScopedName(_prependWorldName) + "::" : std::string()) + name;
-}
 ModelPtr Link::GetModel() const { return model.lock(); }
-WorldPtr Link::GetWorld() const {
-  ModelPtr m = model.lock();
-  return m ? m->GetWorld() : WorldPtr();
-}
 InertialPtr Link::GetInertial() const { return inertial; }
 
 ignition::math::Pose3d Link::WorldPose() const {
@@ -341,15 +334,20 @@ ignition::math::Matrix3d Inertial::MOI() const { return moi; }
 // ---- Joint -------------------------------------------------------------------------------------------------
 
 Joint::Joint(ModelPtr _model, const std::string& _name)
-    : model(_model),
-      name(_name),
+    : Base(_model),
+      model(_model),
       lower(-std::numeric_limits<double>::infinity()),
       upper(std::numeric_limits<double>::infinity()),
       effort(-1.0),
       velocity(-1.0) {
+  name = _name;
+  AddType(JOINT);
   const car_sim::RobotModel& m = robot_model(core_of(_model->GetWorld()), _model->GetName());
   for (const auto& j : m.joints) {
     if (j.name != name) continue;
+    // Gazebo's URDF import makes a continuous or revolute joint a hinge, a prismatic one a slider
+    if (j.type == car_sim::JointType::Prismatic) AddType(SLIDER_JOINT);
+    if (j.type == car_sim::JointType::Revolute || j.type == car_sim::JointType::Continuous) AddType(HINGE_JOINT);
     parent = j.parent;
     child = j.child;
     axis = ign(j.axis);
@@ -375,16 +373,7 @@ bool bad_index(unsigned int index, const std::string& joint) {
 
 }  // namespace
 
-std::string Joint::GetName() const { return name; }
-std::string Joint::GetScopedName(bool _prependWorldName) const {
-  ModelPtr m = model.lock();
-  return (m ? m->GetScopedName(_prependWorldName) + "::" : std::string()) + name;
-}
 ModelPtr Joint::GetModel() const { return model.lock(); }
-WorldPtr Joint::GetWorld() const {
-  ModelPtr m = model.lock();
-  return m ? m->GetWorld() : WorldPtr();
-}
 LinkPtr Joint::GetParent() const {
   ModelPtr m = model.lock();
   return m ? m->GetLink(parent) : LinkPtr();

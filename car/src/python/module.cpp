@@ -642,6 +642,7 @@ void bind_world_run(py::class_<World>& world) {
            "Advance n fixed steps (releases the GIL).")
       .def("reset", &World::reset, "Time to zero, every model where it started (reset_simulation).")
       .def("reset_poses", &World::reset_poses, "Every model where it started, time goes on (reset_world).")
+      .def("reset_time", &World::reset_time, "Time to zero, models and plug-ins as they are (Gazebo's ResetTime).")
       .def("set_cmd_vel", py::overload_cast<const std::string&, double, double>(&World::set_cmd_vel), py::arg("robot"),
            py::arg("v"), py::arg("w"), "Command the robot's drive plug-ins: v [m/s] forward, w [rad/s] about z.");
 }

@@ -467,6 +467,15 @@ void World::reset() {
 
 void World::reset_poses() { impl_->rebuild(removed_, tick_, false); }
 
+void World::reset_time() {
+  tick_ = 0;
+  for (auto& r : impl_->robots)
+    for (auto& i : r->plugins) {
+      i.schedule.restart(tick_);
+      i.plugin->start_clock(tick_);
+    }
+}
+
 std::vector<std::string> World::model_names() const {
   std::vector<std::string> out;
   for (const auto& m : desc_.models)

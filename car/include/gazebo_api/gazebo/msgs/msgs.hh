@@ -10,6 +10,7 @@
 
 #include "gazebo/msgs/contact.pb.h"
 #include "gazebo/msgs/contacts.pb.h"
+#include "gazebo/msgs/MessageTypes.hh"
 #include "gazebo/msgs/joint_wrench.pb.h"
 #include "gazebo/msgs/time.pb.h"
 #include "gazebo/msgs/vector3d.pb.h"

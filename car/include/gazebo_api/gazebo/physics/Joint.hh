@@ -3,27 +3,25 @@
 #pragma once
 
 #include <boost/any.hpp>
-#include <boost/enable_shared_from_this.hpp>
 #include <boost/weak_ptr.hpp>
 #include <ignition/math/Vector3.hh>
 #include <string>
 
 #include "gazebo/common/Time.hh"
+#include "gazebo/physics/Base.hh"
 #include "gazebo/physics/PhysicsTypes.hh"
 
 namespace gazebo {
 namespace physics {
 
-class Joint : public boost::enable_shared_from_this<Joint> {
+class Joint : public Base {
  public:
   // car: made by the Model handle.
   Joint(ModelPtr _model, const std::string& _name);
-  virtual ~Joint();
+  ~Joint() override;
 
-  std::string GetName() const;
-  std::string GetScopedName(bool _prependWorldName = false) const;
   ModelPtr GetModel() const;
-  WorldPtr GetWorld() const;
+  // The parent and child links (these hide Base::GetParent, as in Gazebo 11).
   LinkPtr GetParent() const;
   LinkPtr GetChild() const;
   unsigned int DOF() const;
@@ -38,7 +36,9 @@ class Joint : public boost::enable_shared_from_this<Joint> {
   void SetForce(unsigned int _index, double _effort);
   // The sum SetForce applied in the current (or, between steps, the last) step with a SetForce.
   double GetForce(unsigned int _index);
-  // Sets the position; the joint's speed becomes 0 (car: _preserveWorldVelocity is not offered and must be false).
+  // Sets the position, clamped to the limits (the child side moves, the parent stays): the joint's rate becomes 0,
+  // or, with _preserveWorldVelocity, stays (car keeps the joint's rate; Gazebo keeps each moved link's world
+  // velocity, or zeroes it: the same for a robot at rest).
   bool SetPosition(const unsigned int _index, const double _position, const bool _preserveWorldVelocity = false);
   double LowerLimit(unsigned int _index = 0) const;
   double UpperLimit(const unsigned int _index = 0) const;
@@ -56,7 +56,6 @@ class Joint : public boost::enable_shared_from_this<Joint> {
 
  private:
   boost::weak_ptr<Model> model;
-  std::string name;
   std::string parent, child;
   double lower, upper, effort, velocity;
   ignition::math::Vector3d axis;

@@ -2,45 +2,42 @@
 // Forces and torques act in the coming physics step only (Gazebo's rule): add them each step, in WorldUpdateBegin.
 #pragma once
 
-#include <boost/enable_shared_from_this.hpp>
 #include <boost/weak_ptr.hpp>
 #include <ignition/math/Pose3.hh>
 #include <ignition/math/Vector3.hh>
 #include <string>
 
+#include "gazebo/physics/Entity.hh"
 #include "gazebo/physics/PhysicsTypes.hh"
 
 namespace gazebo {
 namespace physics {
 
-class Link : public boost::enable_shared_from_this<Link> {
+class Link : public Entity {
  public:
   // car: made by the Model handle.
   Link(ModelPtr _model, const std::string& _name);
-  virtual ~Link();
+  ~Link() override;
 
-  std::string GetName() const;
-  std::string GetScopedName(bool _prependWorldName = false) const;
   ModelPtr GetModel() const;
-  WorldPtr GetWorld() const;
   InertialPtr GetInertial() const;
 
   // The link frame, world frame.
-  ignition::math::Pose3d WorldPose() const;
+  ignition::math::Pose3d WorldPose() const override;
   // The centre of gravity's frame (the link's axes), world frame.
   ignition::math::Pose3d WorldCoGPose() const;
   // Moves the link's whole model rigidly so that the link lands on _pose (joints kept); _notify and _publish have
   // no effect in car.
-  void SetWorldPose(const ignition::math::Pose3d& _pose, bool _notify = true, bool _publish = true);
+  void SetWorldPose(const ignition::math::Pose3d& _pose, bool _notify = true, bool _publish = true) override;
   // Velocity of the link frame's origin, world frame.
-  ignition::math::Vector3d WorldLinearVel() const;
+  ignition::math::Vector3d WorldLinearVel() const override;
   // Velocity of the point _offset (link frame, from the link origin), world frame.
   ignition::math::Vector3d WorldLinearVel(const ignition::math::Vector3d& _offset) const;
   ignition::math::Vector3d WorldCoGLinearVel() const;
-  ignition::math::Vector3d WorldAngularVel() const;
+  ignition::math::Vector3d WorldAngularVel() const override;
   // The same in the link's axes.
-  ignition::math::Vector3d RelativeLinearVel() const;
-  ignition::math::Vector3d RelativeAngularVel() const;
+  ignition::math::Vector3d RelativeLinearVel() const override;
+  ignition::math::Vector3d RelativeAngularVel() const override;
   // The centre of gravity's velocity / the angular velocity, world frame; the model moves rigidly with the link.
   void SetLinearVel(const ignition::math::Vector3d& _vel);
   void SetAngularVel(const ignition::math::Vector3d& _vel);
@@ -75,7 +72,6 @@ class Link : public boost::enable_shared_from_this<Link> {
 
  private:
   boost::weak_ptr<Model> model;
-  std::string name;
   InertialPtr inertial;
 };
 

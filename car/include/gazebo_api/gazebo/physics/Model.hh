@@ -1,27 +1,23 @@
 // car's Gazebo 11 API (docs/PLUGINS.md): gazebo::physics::Model, a handle on one of car's robots. Its links and
 // joints are handles too; every call goes to car's world (car_sim::World's public API).
 #pragma once
-#include <boost/enable_shared_from_this.hpp>
-#include <boost/weak_ptr.hpp>
 #include <ignition/math/Pose3.hh>
 #include <ignition/math/Vector3.hh>
 #include <sdf/sdf.hh>
 #include <string>
 
+#include "gazebo/physics/Entity.hh"
 #include "gazebo/physics/PhysicsTypes.hh"
 
 namespace gazebo {
 namespace physics {
 
-class Model : public boost::enable_shared_from_this<Model> {
+class Model : public Entity {
  public:
   // car: made by the World handle for a robot of car's world.
   Model(WorldPtr _world, const std::string& _name);
-  virtual ~Model();
+  ~Model() override;
 
-  std::string GetName() const;
-  std::string GetScopedName(bool _prependWorldName = false) const;
-  WorldPtr GetWorld() const;
   // The model's <model> as SDF (car: its name, its links and joints by name, and the plug-ins' elements).
   const sdf::ElementPtr GetSDF();
 
@@ -37,13 +33,13 @@ class Model : public boost::enable_shared_from_this<Model> {
   JointControllerPtr GetJointController();
 
   // The model frame (its root link's frame), world frame.
-  ignition::math::Pose3d WorldPose() const;
+  ignition::math::Pose3d WorldPose() const override;
   // Moves the model rigidly; its velocities and joints are kept. _notify and _publish have no effect in car.
-  void SetWorldPose(const ignition::math::Pose3d& _pose, bool _notify = true, bool _publish = true);
-  ignition::math::Vector3d WorldLinearVel() const;
-  ignition::math::Vector3d WorldAngularVel() const;
-  ignition::math::Vector3d RelativeLinearVel() const;
-  ignition::math::Vector3d RelativeAngularVel() const;
+  void SetWorldPose(const ignition::math::Pose3d& _pose, bool _notify = true, bool _publish = true) override;
+  ignition::math::Vector3d WorldLinearVel() const override;
+  ignition::math::Vector3d WorldAngularVel() const override;
+  ignition::math::Vector3d RelativeLinearVel() const override;
+  ignition::math::Vector3d RelativeAngularVel() const override;
   // Gazebo 11 sets every link's velocity; car sets the root link's centre of mass and moves the model rigidly
   // (joint speeds kept; docs/PLUGINS.md).
   void SetLinearVel(const ignition::math::Vector3d& _vel);
@@ -59,8 +55,6 @@ class Model : public boost::enable_shared_from_this<Model> {
   void UpdateController();
 
  private:
-  boost::weak_ptr<World> world;
-  std::string name;
   Link_V links;
   Joint_V joints;
   JointControllerPtr controller;

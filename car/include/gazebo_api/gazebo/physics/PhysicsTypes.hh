@@ -7,6 +7,8 @@
 namespace gazebo {
 namespace physics {
 
+class Base;
+class Entity;
 class World;
 class Model;
 class Link;
@@ -15,6 +17,8 @@ class JointController;
 class Inertial;
 class PhysicsEngine;
 
+typedef boost::shared_ptr<Base> BasePtr;
+typedef boost::shared_ptr<Entity> EntityPtr;
 typedef boost::shared_ptr<World> WorldPtr;
 typedef boost::shared_ptr<Model> ModelPtr;
 typedef boost::shared_ptr<Link> LinkPtr;

@@ -13,6 +13,7 @@
 #include <sdf/sdf.hh>
 
 #include "gazebo/common/Time.hh"
+#include "gazebo/physics/Base.hh"
 #include "gazebo/physics/PhysicsTypes.hh"
 
 namespace car_sim {
@@ -35,6 +36,12 @@ class World : public boost::enable_shared_from_this<World> {
   uint64_t Iterations() const;
   ModelPtr ModelByName(const std::string& _name) const;
   Model_V Models() const;
+  // The first of the world's models, their links and joints (in that order, model by model) whose scoped name
+  // ("MODEL", "MODEL::LINK", "MODEL::JOINT") or plain name is _name, as Gazebo's Base::GetByName from the root; the
+  // world's own name gives the root element. Null when none.
+  BasePtr BaseByName(const std::string& _name) const;
+  // BaseByName as an Entity: a model or a link; null for a joint (a Base, not an Entity, in Gazebo 11) or none.
+  EntityPtr EntityByName(const std::string& _name) const;
   unsigned int ModelCount() const;
   ignition::math::Vector3d Gravity() const;
   void SetGravity(const ignition::math::Vector3d& _gravity);
@@ -50,6 +57,14 @@ class World : public boost::enable_shared_from_this<World> {
   // which pauses for it: the pause event fires twice when the world was running). Called inside an update event,
   // it is done at the end of that step.
   void Reset();
+  // Sim time and the iteration count to 0; the models' state, the plug-ins' and the pause flag are kept (Gazebo's
+  // World::ResetTime). car's own plug-ins restart their update schedules from 0, as Gazebo's sensors do on the
+  // time-reset event. Called inside an update event, it is done at the end of that step.
+  void ResetTime();
+  // Every model back to its pose at load, at rest, its plug-ins' Reset called; time goes on (reset_world: Gazebo's
+  // ResetEntities(Base::MODEL)). car resets whole models: BASE, ENTITY and MODEL do that; another type is an error
+  // (gzerr) and nothing is reset. Called inside an update event, it is done at the end of that step.
+  void ResetEntities(Base::EntityType _type = Base::BASE);
   // Model insertion (Gazebo's factory): the model appears at the end of the next step (car's pacer also inserts
   // while paused), its plug-ins loaded then; a name taken gets _0, _1, ... (docs/PLUGINS.md "Inserting models").
   // A file: model://NAME through car's model path (GAZEBO_MODEL_PATH, then car's models/), or a path.
@@ -66,7 +81,11 @@ class World : public boost::enable_shared_from_this<World> {
   void UpdateControllers();
 
  private:
+  friend class Model;
   car_sim::World* world;
+  // the root element: the models' parent, named after the world (made on first use)
+  BasePtr Root() const;
+  mutable BasePtr root;
   bool inStep = false;
   mutable std::map<std::string, ModelPtr> models;
   PhysicsEnginePtr physics;

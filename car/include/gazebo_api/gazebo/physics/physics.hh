@@ -2,6 +2,8 @@
 #pragma once
 
 #include "gazebo/gazebo_config.h"
+#include "gazebo/physics/Base.hh"
+#include "gazebo/physics/Entity.hh"
 #include "gazebo/physics/Inertial.hh"
 #include "gazebo/physics/Joint.hh"
 #include "gazebo/physics/JointController.hh"

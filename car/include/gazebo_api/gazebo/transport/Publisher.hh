@@ -1,6 +1,7 @@
-// car's Gazebo 11 API (docs/PLUGINS.md): transport::Publisher for ~/factory: Publish hands the message to the world
-// at once (Gazebo's transport delivers it later); the model appears at the end of the next step, as with
-// World::InsertModelFile.
+// car's Gazebo 11 API (docs/PLUGINS.md "Transport"): transport::Publisher. msgs::Factory on ~/factory: Publish hands
+// the message to the world at once (Gazebo's transport delivers it later); the model appears at the end of the next
+// step, as with World::InsertModelFile. msgs::Vector3d: the topic's subscribers get it at the delivery point
+// (Node::Subscribe).
 #pragma once
 
 #include <string>
@@ -27,6 +28,8 @@ class Publisher {
 
 template <>
 void Publisher::Publish<msgs::Factory>(const msgs::Factory& _message, bool _block);
+template <>
+void Publisher::Publish<msgs::Vector3d>(const msgs::Vector3d& _message, bool _block);
 
 }  // namespace transport
 }  // namespace gazebo

@@ -1,7 +1,7 @@
 // car's Gazebo 11 API (docs/PLUGINS.md): gazebo/transport/TransportTypes.hh, the transport layer's class names and
-// pointer types as Gazebo 11 declares them (boost::shared_ptr). car offers Node and Publisher for the factory topic
-// only (gazebo/transport/Node.hh, docs/PLUGINS.md); the other classes stay incomplete, so code that uses one fails
-// to build.
+// pointer types as Gazebo 11 declares them (boost::shared_ptr). car offers Node, Publisher and Subscriber
+// (gazebo/transport/Node.hh, docs/PLUGINS.md "Transport"); the other classes stay incomplete, so code that uses one
+// fails to build.
 #pragma once
 
 #include <boost/shared_ptr.hpp>

@@ -3,4 +3,5 @@
 
 #include "gazebo/transport/Node.hh"
 #include "gazebo/transport/Publisher.hh"
+#include "gazebo/transport/Subscriber.hh"
 #include "gazebo/transport/TransportTypes.hh"

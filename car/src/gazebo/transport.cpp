@@ -1,0 +1,115 @@
+// car's Gazebo 11 API: transport within one world, for the messages car carries (msgs::Vector3d): Subscriber,
+// Node::Subscribe, Advertise and Publisher::Publish of Vector3d, and the hub's delivery (docs/PLUGINS.md "Transport").
+// Gazebo's transport hands a message to its subscribers on its own threads, some time after Publish; car delivers at
+// one point of its step instead: the end of the step the message was published in.
+#include <algorithm>
+#include <stdexcept>
+
+#include "car_sim/world.hpp"
+#include "gazebo/common/Console.hh"
+#include "gazebo/transport/transport.hh"
+#include "hub.hpp"
+
+namespace car_gazebo {
+
+int Hub::subscribe(const std::string& topic, const std::string& type, Delivery cb, bool latching) {
+  const int id = next_subscription_++;
+  subscriptions_.push_back({id, topic, type, std::move(cb)});
+  const auto last = latest_.find(topic);
+  if (latching && last != latest_.end() && last->second.first == type) {
+    std::weak_ptr<Hub> weak = shared_from_this();
+    boost::shared_ptr<const void> msg = last->second.second;
+    core->defer([weak, id, msg] {
+      if (auto h = weak.lock()) h->deliver({id}, msg);
+    });
+  }
+  return id;
+}
+
+void Hub::unsubscribe(int id) {
+  subscriptions_.erase(std::remove_if(subscriptions_.begin(), subscriptions_.end(),
+                                      [id](const Subscription& s) { return s.id == id; }),
+                       subscriptions_.end());
+}
+
+void Hub::publish(const std::string& topic, const std::string& type, boost::shared_ptr<const void> msg) {
+  latest_[topic] = {type, msg};
+  // the subscribers present now (Gazebo's publication goes to those connected when it is sent)
+  std::vector<int> ids;
+  for (const auto& s : subscriptions_)
+    if (s.topic == topic && s.type == type) ids.push_back(s.id);
+  if (ids.empty()) return;
+  std::weak_ptr<Hub> weak = shared_from_this();
+  core->defer([weak, ids, msg] {
+    if (auto h = weak.lock()) h->deliver(ids, msg);
+  });
+}
+
+void Hub::deliver(const std::vector<int>& ids, const boost::shared_ptr<const void>& msg) {
+  CurrentHub in(this);
+  for (int id : ids) {
+    // a callback may unsubscribe itself or another: look each one up when its turn comes
+    const auto it = std::find_if(subscriptions_.begin(), subscriptions_.end(),
+                                 [id](const Subscription& s) { return s.id == id; });
+    if (it == subscriptions_.end()) continue;
+    const Delivery cb = it->cb;
+    cb(msg);
+  }
+}
+
+}  // namespace car_gazebo
+
+namespace gazebo {
+namespace transport {
+
+namespace {
+
+car_gazebo::Hub& hub_of(const std::string& world) {
+  car_gazebo::Hub* h = car_gazebo::Hub::named(world);
+  if (!h)
+    throw std::logic_error("no world named '" + world +
+                           "' has a plug-in running: car's transport carries messages within a world");
+  return *h;
+}
+
+const char* const kVector3d = "gazebo.msgs.Vector3d";
+
+}  // namespace
+
+Subscriber::Subscriber(const std::string& _topic, std::function<void()> _unsubscribe)
+    : topic(_topic), unsubscribe(std::move(_unsubscribe)) {}
+Subscriber::~Subscriber() { Unsubscribe(); }
+std::string Subscriber::GetTopic() const { return topic; }
+void Subscriber::Unsubscribe() const {
+  if (unsubscribe) unsubscribe();
+  unsubscribe = nullptr;
+}
+
+template <>
+PublisherPtr Node::Advertise<msgs::Vector3d>(const std::string& _topic, unsigned int, double) {
+  return PublisherPtr(new Publisher(this->DecodeTopicName(_topic), kVector3d, this->topicNamespace));
+}
+
+template <>
+void Publisher::Publish<msgs::Vector3d>(const msgs::Vector3d& _message, bool) {
+  hub_of(this->world).publish(this->topic, kVector3d, boost::shared_ptr<const void>(new msgs::Vector3d(_message)));
+}
+
+template <>
+SubscriberPtr Node::SubscribeCallback<msgs::Vector3d>(
+    const std::string& _topic, std::function<void(const boost::shared_ptr<msgs::Vector3d const>&)> _cb,
+    bool _latching) {
+  const std::string topic = this->DecodeTopicName(_topic);
+  car_gazebo::Hub& hub = hub_of(this->topicNamespace);
+  const int id = hub.subscribe(
+      topic, kVector3d,
+      [_cb](const boost::shared_ptr<const void>& _msg) { _cb(boost::static_pointer_cast<const msgs::Vector3d>(_msg)); },
+      _latching);
+  std::weak_ptr<car_gazebo::Hub> weak = hub.shared_from_this();
+  return SubscriberPtr(new Subscriber(topic, [weak, id] {
+    if (auto h = weak.lock()) h->unsubscribe(id);
+  }));
+}
+
+}  // namespace transport
+}  // namespace gazebo
