@@ -67,24 +67,25 @@ def test_it(sim):
 
 
 def test_a_recording_read_after_a_wait_holds_every_message_sent_before_it(tmp_path):
-    # a reader slower than the simulator: each message takes 2 ms of wall time to record (a busy machine's Python).
-    # At rtf 0 run_for(3.0) is over long before 300 such messages are read, and the recording must still hold every
-    # odometry message of the 3 s when run_for returns: the diff drive publishes at 100 Hz of sim time, stamped
-    # 0.01 s to 3.00 s. (Without Sim._settle it held 16 of the 300 when run_for returned.)
+    # a reader slower than the simulator: each message takes 10 ms of wall time to record (a busy machine's Python).
+    # At rtf 0 run_for(5.0) is over long before 100 such messages are read, and the recording must still hold every
+    # /gazebo/model_states message of those 5 s when run_for returns: car.testing's simulator publishes it at its
+    # trajectory_rate, 20 Hz of sim time (ticks 50, 100, ... 5000), with a publisher queue of 100, so none is
+    # dropped however slow the reader. (Without Sim._settle it held 9 of them when run_for returned.)
     r = run_pytest(tmp_path, '''
 import time
 from car.testing.sim import Recording
 _record = Recording._cb
 def _slow(self, msg, args):
-    time.sleep(0.002)
+    time.sleep(0.01)
     _record(self, msg, args)
 Recording._cb = _slow
 
 def test_it(sim):
-    rec = sim.record({'/odom': 'nav_msgs/Odometry'})
-    assert sim.run_for(3.0) == 3.0
-    stamps = [m.header.stamp.to_sec() for m in rec['/odom']]
-    assert len(stamps) == 300 and stamps[-1] == 3.0, (len(stamps), stamps[-1:])
+    rec = sim.record({'/gazebo/model_states': 'gazebo_msgs/ModelStates'})
+    assert sim.run_for(5.0) == 5.0
+    n = len(rec['/gazebo/model_states'])
+    assert n == 100, n
 ''')
     assert r.returncode == 0, r.stdout + r.stderr
 

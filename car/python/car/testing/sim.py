@@ -148,6 +148,18 @@ def _model_xml(source):
     return xml, '<sdf' in xml[:2000]
 
 
+def _unread(connection):
+    """Bytes waiting on a rospy connection's socket, not yet read (FIONREAD); -1 when it cannot say."""
+    import fcntl
+    import struct
+    import termios
+    try:
+        waiting = struct.unpack('i', fcntl.ioctl(connection.socket.fileno(), termios.FIONREAD, b'\0' * 4))[0]
+    except (AttributeError, OSError, ValueError):
+        return -1
+    return waiting
+
+
 class Recording:
     """Messages of some topics from the moment record() was called (reset() empties it and subscribes again).
     messages: list of Recorded in arrival order; rec['/odom'] gives that topic's messages."""
@@ -188,10 +200,12 @@ class Recording:
     def settle(self, hang_s=60.0):
         """Returns once the recording holds every message its publishers had sent to this process when it was
         called (the simulator paused after a wait: everything up to the pause). A publisher's count of messages
-        sent on its connection to us (waits.sent_to_us, the ROS slave API) is the target; a message the publisher
-        dropped (its queue full) is not counted there, so none is waited for. At rtf 0 the simulator runs ahead
-        of a slow reader by seconds of sim time, so without this a recording read right after run_for could end
-        early. A wall-clock bound only: AssertionError after hang_s, naming the topic and the counts."""
+        for its connection to us (waits.sent_to_us, the ROS slave API) is the target. roscpp counts a message when
+        it queues it, and a full queue (the publisher's queue_size) drops the oldest, so the wait also ends once
+        nothing is unread on the connection's socket and nothing new has come for 0.25 s of wall time. At rtf 0 the
+        simulator runs ahead of a slow reader by seconds of sim time: without this, a recording read right after
+        run_for could end early. A wall-clock bound only: AssertionError after hang_s, naming the topic and the
+        counts."""
         import time
         targets = []
         for s in self.subs:
@@ -202,12 +216,21 @@ class Recording:
         deadline = time.monotonic() + hang_s
         for topic, c, n in targets:
             key = (topic, (c.header or {}).get('callerid'))
+            last, since = -1, time.monotonic()
             while True:
                 with self.lock:
                     got = self.received.get(key, 0) + self.before.get(key, 0)
                 if got >= n or c.done:
                     break
-                if time.monotonic() > deadline:
+                now = time.monotonic()
+                if got != last:
+                    last, since = got, now
+                # roscpp counts a message when it queues it for us, and its queue (the publisher's queue_size)
+                # drops the oldest when it is full: nothing unread on the socket and nothing new for 0.25 s of
+                # wall time means the rest were dropped there
+                elif now - since > 0.25 and _unread(c) == 0:
+                    break
+                if now > deadline:
                     raise AssertionError('recording: %d of the %d messages %s sent on %s arrived within %.0f s of '
                                          'wall time' % (got, n, key[1], topic, hang_s))
                 time.sleep(0.002)
