@@ -64,17 +64,4 @@ inline geometry_msgs::Twist to_twist(const Eigen::Vector3d& linear, const Eigen:
   return t;
 }
 
-// A topic of a plug-in: absolute names stay, others go under the namespace ("" = global).
-inline std::string topic_in(const std::string& ns, const std::string& topic) {
-  if (!topic.empty() && topic[0] == '/') return topic;
-  return ns.empty() ? "/" + topic : "/" + ns + "/" + topic;
-}
-
-// Frame names lose a leading '/', as tf2 wants them.
-inline std::string frame(const std::string& f) {
-  size_t i = 0;
-  while (i < f.size() && f[i] == '/') ++i;
-  return f.substr(i);
-}
-
 }  // namespace car_ros

@@ -354,7 +354,7 @@ void SimNode::make_io(const std::string& name) {
                     {"frameName", "world"},
                     {"updateRate", std::to_string(model_states_rate_)}};
     world_->attach_plugin(name, truth);
-    io.joint_states = nh_.advertise<sensor_msgs::JointState>(topic_in(frame(info.robot_namespace), "joint_states"), 10);
+    io.joint_states = nh_.advertise<sensor_msgs::JointState>(car_sim::resolve_topic(car_sim::strip_frame(info.robot_namespace), "joint_states"), 10);
   }
   for (const auto& p : world_->plugins()) {
     if (p.robot != name) continue;
