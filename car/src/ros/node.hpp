@@ -76,14 +76,7 @@ class SimNode : public NodeContext {
   void flush_published() override { publisher_.flush(); }
 
  protected:
-  void post(std::function<void()> job, size_t bytes) override {
-    publisher_.post(
-        [this, job = std::move(job), bytes] {
-          job();
-          roscpp_.published(bytes);
-        },
-        bytes);
-  }
+  void post(std::function<void()> job, size_t bytes) override { publisher_.post(std::move(job), bytes); }
   void published(const std::string& topic, uint32_t subscribers) override { lockstep_.published(topic, subscribers); }
   void listeners_changed() override { update_activity(); }
 
@@ -197,11 +190,12 @@ class SimNode : public NodeContext {
   uint64_t perf_tick_ = 0;
   uint64_t ros_time_tick_ = 0;  // the tick whose sim time roscpp's time is (start_with_sim_time: 0)
   // What waits in roscpp's publish queues: at most 32 MB (three Kinect clouds) before the publishing thread waits
-  // for roscpp's poll thread (poll_gate.hpp). Destroyed after publisher_, whose last jobs pass through it.
+  // for roscpp's poll thread (poll_gate.hpp), told by publisher_ after each job. Destroyed after publisher_, whose
+  // last jobs pass through it.
   PollGate roscpp_{32u << 20};
   // Last member: destroyed first, so it sends what is queued while every publisher above still exists.
   // Bound: 64 MB or 4096 messages waiting (6 Kinect clouds of 10 MB).
-  PublishQueue publisher_{64u << 20, 4096};
+  PublishQueue publisher_{64u << 20, 4096, [this](size_t bytes) { roscpp_.published(bytes); }};
 };
 
 }  // namespace car_ros

@@ -7,8 +7,11 @@
 
 namespace car_ros {
 
-PublishQueue::PublishQueue(size_t max_bytes, size_t max_jobs)
-    : max_bytes_(max_bytes), max_jobs_(max_jobs < 1 ? 1 : max_jobs), thread_([this] { loop(); }) {}
+PublishQueue::PublishQueue(size_t max_bytes, size_t max_jobs, std::function<void(size_t)> after_job)
+    : max_bytes_(max_bytes),
+      max_jobs_(max_jobs < 1 ? 1 : max_jobs),
+      after_job_(std::move(after_job)),
+      thread_([this] { loop(); }) {}
 
 PublishQueue::~PublishQueue() {
   {
@@ -106,6 +109,7 @@ void PublishQueue::loop() {
     for (auto& job : batch) {
       try {
         job.first();
+        if (after_job_) after_job_(job.second);
       } catch (const std::exception& e) {
         // a publisher that fails (roscpp shutting down) must not end the thread or the node
         std::fprintf(stderr, "car: publishing failed: %s\n", e.what());

@@ -20,7 +20,8 @@ class PublishQueue {
   // At most max_bytes of messages [bytes, serialised size] or max_jobs jobs wait at once, besides the one being
   // sent: post() blocks beyond that (the simulation waits for its subscribers' sockets instead of queueing
   // without bound). The thread takes what is queued as one batch; its jobs count until the batch is done.
-  PublishQueue(size_t max_bytes, size_t max_jobs);
+  // after_job: called on the thread after each job with its bytes (the node's gate on roscpp's queues), if set.
+  PublishQueue(size_t max_bytes, size_t max_jobs, std::function<void(size_t)> after_job = {});
   // Runs what is still queued, then joins the thread.
   ~PublishQueue();
   PublishQueue(const PublishQueue&) = delete;
@@ -64,6 +65,7 @@ class PublishQueue {
   std::chrono::steady_clock::time_point last_wake_ = std::chrono::steady_clock::now() - std::chrono::hours(24 * 365);
   int waiters_ = 0;       // callers waiting on room_
   bool stop_ = false;
+  const std::function<void(size_t)> after_job_;
   std::thread thread_;
 };
 
