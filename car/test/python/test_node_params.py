@@ -8,7 +8,7 @@ import time
 
 import pytest
 import roslib.packages as roslib_packages
-from car.testing.sim import shutdown_signal
+from car.testing.sim import _master_up, shutdown_signal
 
 BOUND = 120.0  # [s] wall: a bound against hanging, not a speed requirement
 
@@ -27,6 +27,13 @@ def master(tmp_path):
                ROS_HOME=str(tmp_path))
     core = subprocess.Popen(['rosmaster', '--core', '-p', str(port)], env=env, start_new_session=True,
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    # up before a node starts: world_markers, started at once, was refused a connection on a busy machine
+    # (ConnectionRefusedError where the ~rate check was expected, clean-install proof of 2026-11-29)
+    deadline = time.monotonic() + BOUND
+    while not _master_up(env['ROS_MASTER_URI']):
+        assert core.poll() is None, 'rosmaster on port %d exited (%s)' % (port, core.returncode)
+        assert time.monotonic() < deadline, 'rosmaster on port %d did not answer within %.0f s' % (port, BOUND)
+        time.sleep(0.05)
     yield env
     # SIGINT, or SIGTERM where this run ignores SIGINT (the master would inherit that)
     os.killpg(core.pid, shutdown_signal())

@@ -162,9 +162,17 @@ def xy(msg):
     return msg.pose.pose.position.x, msg.pose.pose.position.y
 
 
-def at_time(msgs, t):
-    """The message stamped nearest to sim time t."""
-    return min(msgs, key=lambda m: abs(m.header.stamp.to_sec() - t))
+def at_time(msgs, t, within=None):
+    """The message stamped nearest to sim time t. With within [s]: AssertionError when that message is farther
+    from t than that, naming the stamps the recording holds (a connection's queue drops the oldest messages when
+    a starved reader falls behind, so the one nearest t may be a later one)."""
+    m = min(msgs, key=lambda m: abs(m.header.stamp.to_sec() - t))
+    if within is not None and abs(m.header.stamp.to_sec() - t) > within:
+        stamps = [x.header.stamp.to_sec() for x in msgs]
+        raise AssertionError('no message within %.3f s of sim time %.3f: the nearest is stamped %.3f (%d messages '
+                             'from %.3f to %.3f)' % (within, t, m.header.stamp.to_sec(), len(msgs), min(stamps),
+                                                     max(stamps)))
+    return m
 
 
 def fit_circle(points):

@@ -56,9 +56,15 @@ class DriveTest(unittest.TestCase):
         self.assertLess(math.dist(xy(at_time(msgs, t0)), xy(at_time(msgs, t0 + lap))), 0.10)
 
     def test_straight_ramp_covers_the_expected_distance(self):
-        self.start(0.5, 0.0)
+        # the start is read while paused at t = 0, not from the recording: on a starved machine the ground truth's
+        # connection queue can drop the first messages (the oldest go when the reader falls behind), and the one
+        # nearest t = 0 was once stamped near 0.9 s (1.51 m measured)
+        self.start(0.5, 0.0, run=False)
+        p0 = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)('mycar', '').pose.position
+        call('/gazebo/unpause_physics')
         msgs = self.truth.until(4.05)
-        d = math.dist(xy(at_time(msgs, 0.0)), xy(at_time(msgs, 4.0)))
+        # ground truth every 10 ms: the message nearest 4.0 is at most half a period off
+        d = math.dist((p0.x, p0.y), xy(at_time(msgs, 4.0, within=0.006)))
         # 0.5 m/s for 4 s, minus the ramp: wheelAcceleration 1.8 m/s^2 applied over upstream's 0.011 s per 0.01 s
         # update (docs/COMPAT-plugins.md), 1.98 m/s^2
         self.assertAlmostEqual(d, 0.5 * 4 - 0.5 ** 2 / (2 * 1.98), delta=0.03)
