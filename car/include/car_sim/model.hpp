@@ -190,6 +190,10 @@ struct RobotModel {
   std::set<std::string> preserved_fixed_joints;  // <gazebo reference=J><preserveFixedJoint> (or disable...)
   std::vector<std::string> world_joints;         // joints from the link `world`: the model is anchored
   std::vector<Transmission> transmissions;       // URDF <transmission>s, as written (ros_control)
+  // The root link's pose in the model frame [m, rad]: identity for URDF and anchored models; an SDF model's root
+  // <link><pose>. Gazebo's model pose is the model frame (Model::WorldPose): World::model_state reports root link
+  // pose * root_in_model^-1, and set_model_state places the root link at pose * root_in_model.
+  Eigen::Isometry3d root_in_model = Eigen::Isometry3d::Identity();
 
   const Link* find_link(const std::string& name) const;
   const Joint* find_joint(const std::string& name) const;

@@ -473,7 +473,8 @@ SdfRobot convert_sdf_model(const sdf::Model& sm, const std::string& source, cons
     m.root_link = roots.front();
     ignition::math::Pose3d lp;
     sm.LinkByName(m.root_link)->SemanticPose().Resolve(lp);
-    out.root_pose = model_pose * to_iso(lp);
+    m.root_in_model = to_iso(lp);
+    out.root_pose = model_pose * m.root_in_model;
   }
 
   read_plugins_and_sensors(sm, source, mwhere, &m);

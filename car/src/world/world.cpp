@@ -497,7 +497,13 @@ std::vector<std::string> World::robot_names() const {
 const RobotInfo& World::robot(const std::string& name) const { return impl_->robot(name).info; }
 
 ModelState World::model_state(const std::string& name) const {
-  if (auto* r = impl_->find(name)) return r->body->root_state();
+  if (auto* r = impl_->find(name)) {
+    // the model frame, as Gazebo's Model::WorldPose; the twist is the root (canonical) link's, at its origin
+    // (Model::WorldLinearVel), as the root state already holds it
+    ModelState s = r->body->root_state();
+    s.pose = s.pose * r->info.model.root_in_model.inverse();
+    return s;
+  }
   if (auto s = impl_->phys->world_model_state(name)) return *s;
   if (has_model(name)) {
     ModelState s;
@@ -510,7 +516,10 @@ ModelState World::model_state(const std::string& name) const {
 void World::set_model_state(const std::string& name, const ModelState& st) {
   check_state(st);
   if (auto* r = impl_->find(name)) {
-    r->body->set_root_state(st);
+    // st.pose is the model frame's (Model::SetWorldPose): the root link goes where the frame takes it
+    ModelState root = st;
+    root.pose = st.pose * r->info.model.root_in_model;
+    r->body->set_root_state(root);
   } else if (!impl_->phys->set_world_model_state(name, st)) {
     throw std::invalid_argument("no model named '" + name + "'");
   }

@@ -94,6 +94,46 @@ TEST(SdfModel, SpawnPoseComposesWithModelPose) {
   EXPECT_NEAR(p.y(), 1.0, 1e-9);
 }
 
+// Gazebo reports and sets a model's pose as its model frame (Model::WorldPose, SetWorldPose; gazebo_ros
+// get/set_model_state), not its root link's. Root link 'a' at (0.5, 0, 0) turned 90 deg in the model; spawned at
+// (3, 0, 0) turned 90 deg: the model frame is the spawn pose, the link at (3, 0) + R(90)(0.5, 0) = (3, 0.5), yaw 180.
+// Reporting the link (car before) gives (3, 0.5), 0.5 m off.
+TEST(SdfModel, ModelStateIsTheModelFrameNotTheRootLink) {
+  const SdfRobot r =
+      load_sdf_model_string(sdf("<model name='m'>" + lnk("a", "<pose>0.5 0 0 0 0 1.5707963267948966</pose>") +
+                                "</model>"));
+  World w(empty_world());
+  w.spawn_sdf(r, "bot", at(3, 0, kHalfPi));
+  const Eigen::Isometry3d model = w.model_state("bot").pose;
+  EXPECT_NEAR(model.translation().x(), 3.0, 1e-9);
+  EXPECT_NEAR(model.translation().y(), 0.0, 1e-9);
+  EXPECT_NEAR(Eigen::AngleAxisd(model.linear()).angle(), kHalfPi, 1e-9);
+  const Eigen::Isometry3d link = w.link_state({"bot", "a", true}).pose;
+  EXPECT_NEAR(link.translation().x(), 3.0, 1e-9);
+  EXPECT_NEAR(link.translation().y(), 0.5, 1e-9);
+}
+
+// set_model_state places the model frame: the same model set to (1, 2, 0) with no turn puts link 'a' at
+// (1.5, 2, 0) turned 90 deg, and the model reads back (1, 2, 0). Setting the root link there instead (car before)
+// puts link 'a' at (1, 2, 0).
+TEST(SdfModel, SetModelStatePlacesTheModelFrame) {
+  const SdfRobot r =
+      load_sdf_model_string(sdf("<model name='m'>" + lnk("a", "<pose>0.5 0 0 0 0 1.5707963267948966</pose>") +
+                                "</model>"));
+  World w(empty_world());
+  w.spawn_sdf(r, "bot", at(0, 0, 0));
+  ModelState target;
+  target.pose = at(1, 2, 0);
+  w.set_model_state("bot", target);
+  const Eigen::Isometry3d link = w.link_state({"bot", "a", true}).pose;
+  EXPECT_NEAR(link.translation().x(), 1.5, 1e-9);
+  EXPECT_NEAR(link.translation().y(), 2.0, 1e-9);
+  EXPECT_NEAR(Eigen::AngleAxisd(link.linear()).angle(), kHalfPi, 1e-9);
+  const Eigen::Vector3d back = w.model_state("bot").pose.translation();
+  EXPECT_NEAR(back.x(), 1.0, 1e-9);
+  EXPECT_NEAR(back.y(), 2.0, 1e-9);
+}
+
 TEST(SdfModel, JointTypesMapOntoTheCore) {
   const SdfRobot r = load_sdf_model_string(sdf(
       "<model name='m'>" + lnk("a") + lnk("b") + lnk("c") + lnk("d") + lnk("e") + lnk("f") +
