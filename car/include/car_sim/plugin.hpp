@@ -177,7 +177,8 @@ class RobotHandle {
   virtual Eigen::Isometry3d link_pose(const std::string& link) const = 0;
   // A link's frame with the velocity of its origin, world frame; throws for an unknown link.
   virtual ModelState link_state(const std::string& link) const = 0;
-  // The root link's frame, with the velocity of its origin, world frame.
+  // The model frame (Gazebo's Model::WorldPose: the root link's frame for a URDF robot; an SDF model's own frame),
+  // with the velocity of the root link's origin (Model::WorldLinearVel), world frame.
   virtual ModelState root_state() const = 0;
 
   // ---- motion and contact (issue 11) ----

@@ -64,7 +64,12 @@ struct World::Impl : WorldAccess {
     void add_joint_effort(int j, double effort) override { physics::add_joint_effort(*body, j, effort); }
     Eigen::Isometry3d link_pose(const std::string& l) const override { return body->link_pose(l); }
     ModelState link_state(const std::string& l) const override { return body->link_state(l); }
-    ModelState root_state() const override { return body->root_state(); }
+    // the model frame (Gazebo's Model::WorldPose, what its drives read), with the root link's twist
+    ModelState root_state() const override {
+      ModelState s = body->root_state();
+      s.pose = s.pose * info.model.root_in_model.inverse();
+      return s;
+    }
 
     // ---- motion and contact (issue 11) ----
     std::map<std::string, Wrench> applied;  // what apply_wrench added per link this step; cleared before each step
@@ -497,13 +502,9 @@ std::vector<std::string> World::robot_names() const {
 const RobotInfo& World::robot(const std::string& name) const { return impl_->robot(name).info; }
 
 ModelState World::model_state(const std::string& name) const {
-  if (auto* r = impl_->find(name)) {
-    // the model frame, as Gazebo's Model::WorldPose; the twist is the root (canonical) link's, at its origin
-    // (Model::WorldLinearVel), as the root state already holds it
-    ModelState s = r->body->root_state();
-    s.pose = s.pose * r->info.model.root_in_model.inverse();
-    return s;
-  }
+  // the model frame, as Gazebo's Model::WorldPose; the twist is the root (canonical) link's, at its origin
+  // (Model::WorldLinearVel)
+  if (auto* r = impl_->find(name)) return r->root_state();
   if (auto s = impl_->phys->world_model_state(name)) return *s;
   if (has_model(name)) {
     ModelState s;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "car_sim/drive.hpp"
+#include "car_sim/sdf_model.hpp"
 #include "car_sim/world.hpp"
 #include "planar_move/planar_move.hpp"
 #include "test_util.hpp"
@@ -146,4 +147,27 @@ TEST(PlanarMove, TurnsAboutTheCentreOfMass) {
   const Eigen::Isometry3d p = w.model_state("box").pose;
   EXPECT_NEAR(p.translation().x(), 0.2, 2e-3);
   EXPECT_NEAR(p.translation().y(), -0.2, 2e-3);
+}
+
+// Gazebo's planar_move publishes parent_->WorldPose(), the model frame. An SDF model whose only link sits 0.3 m
+// ahead of the model frame, at rest at the origin on a frictionless ground, reads (0, 0); the link's own pose, what
+// car published before, reads (0.3, 0).
+TEST(PlanarMove, OdometryOfAnSdfModelIsItsModelFrame) {
+  const SdfRobot r = load_sdf_model_string(R"(<?xml version='1.0'?><sdf version='1.7'><model name='box'>
+  <link name='base'><pose>0.3 0 0 0 0 0</pose>
+    <inertial><pose>0 0 0.1 0 0 0</pose><mass>10</mass>
+      <inertia><ixx>0.1</ixx><iyy>0.1</iyy><izz>0.1</izz><ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia></inertial>
+    <collision name='c'><pose>0 0 0.1 0 0 0</pose><geometry><box><size>0.4 0.4 0.2</size></box></geometry>
+      <surface><friction><ode><mu>0</mu><mu2>0</mu2></ode></friction></surface></collision>
+  </link>
+  <plugin name='move' filename='libgazebo_ros_planar_move.so'><odometryRate>20</odometryRate></plugin>
+</model></sdf>)");
+  World w(empty_world());
+  w.spawn_sdf(r, "box", at(0, 0, 0));
+  w.step(100);
+  const OutputQueue out = w.take_outputs();
+  ASSERT_FALSE(out.empty());
+  const auto& o = dynamic_cast<const OdometryOut&>(*out.back());
+  EXPECT_NEAR(o.pose.translation().x(), 0.0, 1e-4);
+  EXPECT_NEAR(o.pose.translation().y(), 0.0, 1e-4);
 }
