@@ -6,7 +6,6 @@
 #include <Eigen/Geometry>
 #include <functional>
 #include <memory>
-#include <string>
 #include <vector>
 
 #include "car_sim/model.hpp"
@@ -50,14 +49,6 @@ class RayScene {
 
   const SurfaceLook& look(int body) const;
   int body_count() const;
-
-  // The rigid body a scene body moves with (an id the physics gives; -1, the default: none), and a robot link's
-  // (-1 when it has none): a ray sensor skips the bodies of its own rigid body, as ODE never collides two geoms of
-  // one body (Gazebo's ray sensors; docs/COMPAT-sensors.md).
-  void set_solid(int body, int solid);
-  int solid(int body) const;
-  void name_solid(const std::string& robot, const std::string& link, int solid);
-  int solid_of(const std::string& robot, const std::string& link) const;
 
   // Casts n rays from one origin: directions are unit vectors in the frame `rotation` maps to the world.
   // Hits between t_near and t_far [m] along each ray (t_near may be per ray: pass n values, or one).

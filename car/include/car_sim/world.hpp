@@ -233,7 +233,7 @@ class World {
   using StepHook = std::function<void(uint64_t tick)>;
   // Returns the hook's id (never 0).
   uint64_t add_step_hook(StepPhase phase, StepHook hook);
-  // Removes a hook (a step, pause or stop hook); an unknown id is nothing.
+  // Removes a hook (a step, pause, stop or time-reset hook); an unknown id is nothing.
   void remove_step_hook(uint64_t id);
 
   // Whether the world is paused (Gazebo's World::IsPaused): a flag for the pacer, which steps only while it is false
@@ -247,6 +247,10 @@ class World {
   // (Gazebo's World::Stop and event::Events::stop, at the server's end).
   uint64_t add_stop_hook(std::function<void()> hook);
   void stop();
+  // Time went back to 0 (Gazebo's event::Events::timeReset, raised in World::ResetTime only): the time-reset hooks
+  // run once in reset_time(), after the plug-ins' schedules restart, and once in reset(), before any plug-in's
+  // reset; reset_poses() runs none (gazebo_ros's reset_world leaves time alone). On the calling thread.
+  uint64_t add_time_reset_hook(std::function<void()> hook);
   // Work for between steps, in the order given (Gazebo's World::ProcessMessages: models inserted by a plug-in):
   // step() runs it at the end of each step, after every plug-in's post_physics; run_deferred() runs it now (the
   // pacer calls it while paused, as Gazebo processes its messages while paused). Work deferred by deferred work runs

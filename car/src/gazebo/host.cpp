@@ -54,6 +54,11 @@ Hub::Hub(car_sim::World* c) : core(c), world(new gazebo::physics::World(c)) {
     CurrentHub in(this);
     pause.fire(p);
   });
+  // event::Events::timeReset: the core's reset_time and reset (Gazebo's World::ResetTime, which World::Reset calls)
+  time_reset_hook_ = core->add_time_reset_hook([this] {
+    CurrentHub in(this);
+    time_reset.fire();
+  });
   stop_hook_ = core->add_stop_hook([this] {
     // the parked plug-ins may hold the last references to this hub
     std::shared_ptr<Hub> self = shared_from_this();
@@ -65,7 +70,7 @@ Hub::Hub(car_sim::World* c) : core(c), world(new gazebo::physics::World(c)) {
 }
 
 Hub::~Hub() {
-  for (uint64_t id : {before_hook_, after_hook_, pause_hook_, stop_hook_}) core->remove_step_hook(id);
+  for (uint64_t id : {before_hook_, after_hook_, pause_hook_, stop_hook_, time_reset_hook_}) core->remove_step_hook(id);
   hubs().erase(core);
 }
 
@@ -539,6 +544,10 @@ ConnectionPtr Events::ConnectPause(std::function<void(bool)> _subscriber) {
 
 ConnectionPtr Events::ConnectStop(std::function<void()> _subscriber) {
   return connect(hub_for("ConnectStop"), &car_gazebo::Hub::stop, std::move(_subscriber));
+}
+
+ConnectionPtr Events::ConnectTimeReset(std::function<void()> _subscriber) {
+  return connect(hub_for("ConnectTimeReset"), &car_gazebo::Hub::time_reset, std::move(_subscriber));
 }
 
 }  // namespace event

@@ -107,7 +107,7 @@ class Hub : public std::enable_shared_from_this<Hub> {
   car_sim::World* core;
   gazebo::physics::WorldPtr world;
   SlotList<const gazebo::common::UpdateInfo&> begin, before;
-  SlotList<> end, stop;
+  SlotList<> end, stop, time_reset;
   SlotList<bool> pause;
   // whether an update event is running (work that must not run inside a step is deferred)
   bool in_step = false;
@@ -122,6 +122,7 @@ class Hub : public std::enable_shared_from_this<Hub> {
     before.disconnect_owner(owner);
     end.disconnect_owner(owner);
     stop.disconnect_owner(owner);
+    time_reset.disconnect_owner(owner);
     pause.disconnect_owner(owner);
   }
 
@@ -159,7 +160,7 @@ class Hub : public std::enable_shared_from_this<Hub> {
   void before_physics(uint64_t tick);
   void after_physics(uint64_t tick);
   gazebo::common::UpdateInfo info_;
-  uint64_t before_hook_ = 0, after_hook_ = 0, pause_hook_ = 0, stop_hook_ = 0;
+  uint64_t before_hook_ = 0, after_hook_ = 0, pause_hook_ = 0, stop_hook_ = 0, time_reset_hook_ = 0;
 };
 
 // Makes a hub current for the plug-in code run in its scope.

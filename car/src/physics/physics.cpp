@@ -123,25 +123,19 @@ void Physics::Impl::build_rays() {
       moving_ray_bodies.emplace_back(rays->add_body(s, sdf_look(l)), dm.bodies[i]);
     }
   }
-  // each robot body a solid of its own, named by each of its links (a ray sensor skips its own)
-  int solid = 0;
   for (auto& r : robots) {
     const BodyTree& tree = r->tree();
     for (size_t b = 0; b < tree.bodies.size(); ++b) {
       const Body& body = tree.bodies[b];
       const btCollisionObject* col = r->collider(static_cast<int>(b));
       if (!col) continue;
-      ++solid;
       for (const auto& name : body.links) {
-        rays->name_solid(r->name(), name, solid);
         const Link* l = r->model().find_link(name);
         std::vector<std::pair<Shape, Eigen::Isometry3d>> s;
         for (const auto& c : l->collisions)
           s.emplace_back(c, body.top_to_com.inverse() * tree.link_in_top.at(name) * c.origin);
         if (s.empty()) continue;
-        const int id = rays->add_body(s, urdf_look(*l));
-        rays->set_solid(id, solid);
-        moving_ray_bodies.emplace_back(id, col);
+        moving_ray_bodies.emplace_back(rays->add_body(s, urdf_look(*l)), col);
       }
     }
   }

@@ -270,21 +270,6 @@ void RayScene::commit() {
 const SurfaceLook& RayScene::look(int body) const { return impl_->bodies.at(body).look; }
 int RayScene::body_count() const { return static_cast<int>(impl_->bodies.size()); }
 
-void RayScene::set_solid(int body, int solid) {
-  if (impl_->solids.size() <= static_cast<size_t>(body)) impl_->solids.resize(body + 1, -1);
-  impl_->solids.at(body) = solid;
-}
-int RayScene::solid(int body) const {
-  return body >= 0 && static_cast<size_t>(body) < impl_->solids.size() ? impl_->solids[body] : -1;
-}
-void RayScene::name_solid(const std::string& robot, const std::string& link, int solid) {
-  impl_->link_solids[robot + "\n" + link] = solid;
-}
-int RayScene::solid_of(const std::string& robot, const std::string& link) const {
-  const auto it = impl_->link_solids.find(robot + "\n" + link);
-  return it == impl_->link_solids.end() ? -1 : it->second;
-}
-
 void RayScene::cast(const Eigen::Vector3d& origin, const Eigen::Matrix3d& rotation, const float* directions, int n,
                     const float* t_near, bool t_near_per_ray, float t_far, RayHit* out) const {
   const float ox = static_cast<float>(origin.x()), oy = static_cast<float>(origin.y()), oz = static_cast<float>(origin.z());

@@ -5,7 +5,6 @@
 #include <embree3/rtcore.h>
 
 #include <Eigen/Geometry>
-#include <map>
 #include <memory>
 #include <vector>
 
@@ -55,9 +54,6 @@ struct RayScene::Impl {
   std::vector<std::unique_ptr<raycast_detail::Primitive>> primitives;
   std::vector<int> body_of_instance;
   bool top_dirty = true;
-  // RayScene::set_solid / name_solid: each body's rigid body, and each robot link's ("robot\nlink")
-  std::vector<int> solids;
-  std::map<std::string, int> link_solids;
 };
 
 }  // namespace car_sim

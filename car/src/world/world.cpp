@@ -301,6 +301,12 @@ struct World::Impl : WorldAccess {
   bool paused = false, stopped = false;
   std::vector<std::pair<uint64_t, std::function<void(bool)>>> pause_hooks;
   std::vector<std::pair<uint64_t, std::function<void()>>> stop_hooks;
+  std::vector<std::pair<uint64_t, std::function<void()>>> time_reset_hooks;
+  // Runs the time-reset hooks (a copy: a hook may add or remove hooks).
+  void time_reset() {
+    const auto now = time_reset_hooks;
+    for (const auto& h : now) h.second();
+  }
   std::vector<std::function<void()>> deferred;
   std::vector<std::unique_ptr<SharedPlugin>> world_plugins, system_plugins;
   std::vector<Diagnostic> world_diagnostics;
@@ -464,6 +470,8 @@ void World::reset() {
   tick_ = 0;
   impl_->wrenches.clear();
   impl_->efforts.clear();
+  // Gazebo's World::Reset: ResetTime (its timeReset event) before the entities and plug-ins are reset
+  impl_->time_reset();
   impl_->rebuild(removed_, tick_, true);
   // the world's plug-ins after the models' (Gazebo's World::Reset); reset_poses leaves them, as reset_world does
   for (auto& p : impl_->world_plugins) p->reset();
@@ -479,6 +487,8 @@ void World::reset_time() {
       i.schedule.restart(tick_);
       i.plugin->start_clock(tick_);
     }
+  // after the schedules, as Gazebo's sensor manager (connected first) restarts its sensors before the plug-ins
+  impl_->time_reset();
 }
 
 std::vector<std::string> World::model_names() const {
@@ -1024,8 +1034,8 @@ void World::remove_step_hook(uint64_t id) {
   if (!impl_->running_hooks) impl_->drop_removed_hooks();
   auto& ph = impl_->pause_hooks;
   ph.erase(std::remove_if(ph.begin(), ph.end(), [id](const auto& h) { return h.first == id; }), ph.end());
-  auto& sh = impl_->stop_hooks;
-  sh.erase(std::remove_if(sh.begin(), sh.end(), [id](const auto& h) { return h.first == id; }), sh.end());
+  for (auto* v : {&impl_->stop_hooks, &impl_->time_reset_hooks})
+    v->erase(std::remove_if(v->begin(), v->end(), [id](const auto& h) { return h.first == id; }), v->end());
 }
 
 bool World::paused() const { return impl_->paused; }
@@ -1049,6 +1059,13 @@ uint64_t World::add_stop_hook(std::function<void()> hook) {
   if (!hook) throw std::invalid_argument("a stop hook needs a function");
   const uint64_t id = impl_->next_hook++;
   impl_->stop_hooks.emplace_back(id, std::move(hook));
+  return id;
+}
+
+uint64_t World::add_time_reset_hook(std::function<void()> hook) {
+  if (!hook) throw std::invalid_argument("a time-reset hook needs a function");
+  const uint64_t id = impl_->next_hook++;
+  impl_->time_reset_hooks.emplace_back(id, std::move(hook));
   return id;
 }
 

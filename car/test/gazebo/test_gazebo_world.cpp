@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <optional>
 #include <string>
+#include <thread>
+#include <utility>
 
 #include "car_sim/shared_plugin.hpp"
 #include "car_sim/world.hpp"
@@ -53,8 +55,28 @@ class WorldPlugins : public ::testing::Test {
     dlclose(h);
     return s;
   }
+  // The time_reset plug-in's log and its count of calls off the loading thread (test/gazebo/plugins/time_reset.cc),
+  // read from the loaded library and cleared.
+  static std::pair<std::string, int> time_reset_log() {
+    void* h = dlopen((kDir + "/libtime_reset.so").c_str(), RTLD_LAZY | RTLD_NOLOAD);
+    if (!h) return {"<not loaded>", -1};
+    auto log = reinterpret_cast<const char* (*)()>(dlsym(h, "car_test_time_reset_log"));
+    auto elsewhere = reinterpret_cast<int (*)()>(dlsym(h, "car_test_time_reset_elsewhere"));
+    auto clear = reinterpret_cast<void (*)()>(dlsym(h, "car_test_time_reset_clear"));
+    std::pair<std::string, int> out{log(), elsewhere()};
+    clear();
+    dlclose(h);
+    return out;
+  }
   std::vector<std::pair<std::string, std::optional<std::string>>> saved_;
 };
+
+// How many times a log has `what` ("timereset@0 reset@0" has one "timereset").
+int count(const std::string& log, const std::string& what) {
+  int n = 0;
+  for (size_t at = log.find(what); at != std::string::npos; at = log.find(what, at + 1)) ++n;
+  return n;
+}
 
 // A world "lab" without gravity, a ground plane and the given <plugin>s (and models) in <world>.
 std::unique_ptr<World> lab(const std::string& inside) {
@@ -182,6 +204,45 @@ TEST_F(WorldPlugins, ResetSimulationResetsTheWorldPluginsResetWorldDoesNot) {
   EXPECT_EQ(world_log(), "");
   w->reset();
   EXPECT_EQ(world_log(), "pause@0.005 reset@0 unpause@0");
+}
+
+// event::Events::timeReset is raised by Gazebo 11's World::ResetTime only (gazebo/physics/World.cc): World::ResetTime
+// raises it (1), reset_world (gazebo_ros: ResetEntities(Base::MODEL)) does not touch time (0), reset_simulation
+// (gazebo_ros: World::Reset, which calls ResetTime) raises it once (1): 2 in all. The plug-in calls ResetTime in
+// its first WorldUpdateBegin, done at the end of that step.
+TEST_F(WorldPlugins, TimeResetComesForResetTimeAndResetSimulationNotResetWorld) {
+  auto w = lab(R"(<plugin name="tr" filename="libtime_reset.so"><action>resettime</action></plugin>)");
+  time_reset_log();
+  w->step(3);
+  EXPECT_EQ(w->tick(), 2u);
+  EXPECT_EQ(count(time_reset_log().first, "timereset"), 1);
+  w->reset_poses();
+  EXPECT_EQ(count(time_reset_log().first, "timereset"), 0);
+  w->reset();
+  EXPECT_EQ(count(time_reset_log().first, "timereset"), 1);
+}
+
+// World::Reset: ResetTime (time 0, then timeReset) before ResetEntities and the plug-ins' Reset: the callback reads
+// SimTime 0 and comes before the plug-in's Reset.
+TEST_F(WorldPlugins, TimeResetComesAtTimeZeroBeforeThePluginsReset) {
+  auto w = lab(R"(<plugin name="tr" filename="libtime_reset.so"/>)");
+  time_reset_log();
+  w->step(5);
+  w->reset();
+  EXPECT_EQ(time_reset_log().first, "timereset@0 reset@0");
+}
+
+// The callback runs on the thread that resets (Gazebo: the caller of World::Reset, gazebo_ros's service thread for
+// reset_simulation): a reset from another thread than the loading one is counted there, one from the loading
+// thread is not.
+TEST_F(WorldPlugins, TimeResetRunsOnTheThreadThatResets) {
+  auto w = lab(R"(<plugin name="tr" filename="libtime_reset.so"/>)");
+  time_reset_log();
+  std::thread other([&] { w->reset(); });
+  other.join();
+  EXPECT_EQ(time_reset_log(), (std::pair<std::string, int>{"timereset@0 reset@0", 1}));
+  w->reset();
+  EXPECT_EQ(time_reset_log(), (std::pair<std::string, int>{"timereset@0 reset@0", 0}));
 }
 
 // The stop event once, when the world goes, before the plug-in is deleted.

@@ -1,6 +1,9 @@
-// World::reset_time (Gazebo's World::ResetTime): time to zero, nothing else reset. Values by hand for the seed car in
-// box_house (worlds/box_house.world), dt = 0.001 s.
+// World::reset_time (Gazebo's World::ResetTime): time to zero, nothing else reset; the time-reset hooks. Values by
+// hand for the seed car in box_house (worlds/box_house.world), dt = 0.001 s.
 #include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <vector>
 
 #include "car_sim/world.hpp"
 #include "test_util.hpp"
@@ -44,4 +47,42 @@ TEST(WorldResetTime, ThePluginsSchedulesRestartFromZero) {
   ASSERT_EQ(odom.size(), 2u);
   EXPECT_EQ(odom[0].tick, 10u);
   EXPECT_EQ(odom[1].tick, 20u);
+}
+
+// The time-reset hooks (Gazebo's timeReset, raised by World::ResetTime only, which World::Reset calls): once for
+// reset_time, none for reset_poses (reset_world leaves time alone), once for reset; each time at tick 0.
+TEST(WorldResetTime, HooksRunForResetTimeAndResetNotResetPoses) {
+  World w(empty_world());
+  std::vector<uint64_t> ticks;
+  w.add_time_reset_hook([&] { ticks.push_back(w.tick()); });
+  w.step(5);
+  w.reset_time();
+  EXPECT_EQ(ticks, (std::vector<uint64_t>{0}));
+  w.step(5);
+  w.reset_poses();
+  EXPECT_EQ(ticks.size(), 1u);
+  w.reset();
+  EXPECT_EQ(ticks, (std::vector<uint64_t>{0, 0}));
+}
+
+// A removed time-reset hook is not called again.
+TEST(WorldResetTime, ARemovedHookIsNotCalled) {
+  World w(empty_world());
+  int calls = 0;
+  const uint64_t id = w.add_time_reset_hook([&] { ++calls; });
+  w.remove_step_hook(id);
+  w.reset_time();
+  w.reset();
+  EXPECT_EQ(calls, 0);
+}
+
+// An empty time-reset hook is refused with its message.
+TEST(WorldResetTime, AnEmptyHookIsRefused) {
+  World w(empty_world());
+  try {
+    w.add_time_reset_hook(nullptr);
+    FAIL() << "an empty hook was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "a time-reset hook needs a function");
+  }
 }

@@ -80,7 +80,7 @@ RayGrid::RayGrid(const PluginConfig& c) {
 double RayGrid::yaw(int i) const { return nh_ > 1 ? hmin_ + i * (hmax_ - hmin_) / (nh_ - 1) : 0.0; }
 double RayGrid::pitch(int j) const { return nv_ > 1 ? vmin_ + j * (vmax_ - vmin_) / (nv_ - 1) : 0.0; }
 
-const std::vector<RayHit>& RayGrid::cast(const StepContext& ctx, const Eigen::Isometry3d& pose, int own_solid) {
+const std::vector<RayHit>& RayGrid::cast(const StepContext& ctx, const Eigen::Isometry3d& pose) {
   // one row in the sensor's x-y plane is a planar fan (car's kernel); other grids go through Embree
   if (nv_ == 1 && pitch(0) == 0.0)
     ctx.world->rays().cast_fan(pose.translation(), pose.linear(), dirs_.data(), size(), yaw(0),
@@ -88,20 +88,7 @@ const std::vector<RayHit>& RayGrid::cast(const StepContext& ctx, const Eigen::Is
   else
     ctx.world->rays().cast(pose.translation(), pose.linear(), dirs_.data(), size(), &rmin_, false, rmax_,
                            hits_.data());
-  if (own_solid >= 0) pass_own_solid(ctx.world->rays(), own_solid, pose, dirs_.data(), rmax_, &hits_);
   return hits_;
-}
-
-void pass_own_solid(const RayScene& scene, int own_solid, const Eigen::Isometry3d& pose, const float* directions,
-                    float t_far, std::vector<RayHit>* hits) {
-  for (size_t i = 0; i < hits->size(); ++i) {
-    RayHit& h = (*hits)[i];
-    // a ray leaves a body's shapes after a few crossings: 16 is past any of car's shapes
-    for (int k = 0; k < 16 && h.body >= 0 && scene.solid(h.body) == own_solid; ++k) {
-      const float from = h.distance + 1e-5f;
-      scene.cast(pose.translation(), pose.linear(), directions + 3 * i, 1, &from, false, t_far, &h);
-    }
-  }
 }
 
 }  // namespace car_sim

@@ -27,10 +27,10 @@ class RayGrid {
   double pitch_min() const { return vmin_; }  // [rad] <vertical><min_angle>
   float range_min() const { return rmin_; }
   float range_max() const { return rmax_; }
-  // Casts every ray from the sensor frame (link pose x sensor pose); hits from range.min to range.max; with
-  // own_solid >= 0, past the bodies of that rigid body (pass_own_solid).
-  const std::vector<RayHit>& cast(const StepContext& ctx, const Eigen::Isometry3d& sensor_in_world,
-                                  int own_solid = -1);
+  // Casts every ray from the sensor frame (link pose x sensor pose); hits from range.min to range.max, the
+  // sensor's own link included (a ray that starts inside a shape reads where it leaves it), as Gazebo 11's ray and
+  // GPU ray sensors (docs/COMPAT-sensors.md "A ray sensor and its own body").
+  const std::vector<RayHit>& cast(const StepContext& ctx, const Eigen::Isometry3d& sensor_in_world);
 
  private:
   int nh_ = 1, nv_ = 1;
@@ -39,12 +39,5 @@ class RayGrid {
   std::vector<float> dirs_;
   std::vector<RayHit> hits_;
 };
-
-// Gazebo's ray sensor (ODE) never sees its own rigid body (ODE collides no two geoms of one body): each ray of
-// hits that hit a body of rigid body own_solid (RayScene::solid) is cast on from just past that hit (10 um), up
-// to t_far [m], until it hits another body or nothing. directions: the rays' unit vectors in the sensor frame, 3
-// per ray, as given to the cast.
-void pass_own_solid(const RayScene& scene, int own_solid, const Eigen::Isometry3d& sensor_in_world,
-                    const float* directions, float t_far, std::vector<RayHit>* hits);
 
 }  // namespace car_sim

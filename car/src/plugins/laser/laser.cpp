@@ -20,8 +20,7 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 class Laser : public Plugin {
  public:
   Laser(const PluginConfig& c, const std::string& robot, uint64_t seed)
-      : robot_(robot), link_(c.link), own_(c.sensor_type == "ray"), sensor_pose_(c.sensor_pose),
-        rate_(c.number("update_rate")),
+      : link_(c.link), sensor_pose_(c.sensor_pose), rate_(c.number("update_rate")),
         rng0_(plugin_rng(seed, robot, c.sensor)), rng_(rng0_) {
     proto_.sensor = c.sensor;
     const int n = static_cast<int>(c.number("ray/scan/horizontal/samples") * c.number("ray/scan/horizontal/resolution"));
@@ -61,15 +60,13 @@ class Laser : public Plugin {
     const Eigen::Isometry3d pose = robot.link_pose(link_) * sensor_pose_;
     const RayScene& scene = ctx.world->rays();
     const std::vector<RayHit>* hits = &hits_;
-    // a ray sensor (not a GPU one) sees past its own rigid body, as Gazebo's ODE rays
-    const int own = own_ ? scene.solid_of(robot_, link_) : -1;
+    // its own link seen too, as Gazebo 11's ray and GPU ray sensors (docs/COMPAT-sensors.md)
     if (grid_) {
-      hits = &grid_->cast(ctx, pose, own);
+      hits = &grid_->cast(ctx, pose);
     } else {
       // one row: a planar fan, car's segment sweep (RayScene::cast_fan)
       scene.cast_fan(pose.translation(), pose.linear(), dirs_.data(), static_cast<int>(hits_.size()), a_, inc_,
                      proto_.range_min, proto_.range_max, hits_.data());
-      if (own >= 0) pass_own_solid(scene, own, pose, dirs_.data(), proto_.range_max, &hits_);
     }
     const int n = static_cast<int>(hits->size());
     auto o = std::make_unique<LaserScanOut>(proto_);
@@ -97,8 +94,7 @@ class Laser : public Plugin {
   }
 
  private:
-  std::string robot_, link_;
-  bool own_;  // a `ray` sensor: skips its own rigid body (pass_own_solid)
+  std::string link_;
   Eigen::Isometry3d sensor_pose_;
   double rate_;
   std::mt19937_64 rng0_, rng_;  // the noise generator as seeded, and as it runs

@@ -1,8 +1,9 @@
 // car's Gazebo 11 API (docs/PLUGINS.md): the world's update events, in Gazebo's order within a step:
 // WorldUpdateBegin (sim time already counts the coming step), the models' joint controllers, BeforePhysicsUpdate
-// (only while physics is enabled), the physics step, WorldUpdateEnd; and pause and stop. A callback connected during
-// a plug-in's Load, Init, Reset or an event belongs to that plug-in's world. Events car does not raise (render,
-// sensors, world created, ...) are not declared: code that connects to them does not build.
+// (only while physics is enabled), the physics step, WorldUpdateEnd; and pause, stop and time reset. A callback
+// connected during a plug-in's Load, Init, Reset or an event belongs to that plug-in's world. Events car does not
+// raise (render, sensors, world created, world reset, ...) are not declared: code that connects to them does not
+// build.
 #pragma once
 
 #include <functional>
@@ -22,6 +23,9 @@ class Events {
   static ConnectionPtr ConnectPause(std::function<void(bool)> _subscriber);
   // The world stops: once, when car's world ends (the node shuts down), before any plug-in is deleted.
   static ConnectionPtr ConnectStop(std::function<void()> _subscriber);
+  // Sim time went back to 0 (Gazebo's timeReset, raised by World::ResetTime only): once per World::ResetTime and
+  // per reset_simulation (World::Reset, before any plug-in's Reset), never for reset_world; SimTime() reads 0.
+  static ConnectionPtr ConnectTimeReset(std::function<void()> _subscriber);
 };
 
 }  // namespace event
