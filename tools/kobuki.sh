@@ -2,7 +2,8 @@
 # Runs Kobuki as kobuki_gazebo launches it, with kobuki_desktop's own plug-in libgazebo_ros_kobuki.so built
 # UNCHANGED against car's Gazebo API (docs/PLUGINS.md), and checks what the robot does (tools/kobuki_probe.py):
 # /mobile_base/commands/velocity moves it, /odom and the IMU publish, the bumper reports against a wall, the cliff
-# sensor reports at an edge. Fetches nothing: it takes git directories (or checkouts) of the repositories. Not in
+# sensor reports no cliff at an edge, as in Gazebo 11 (kobuki#431).
+# Fetches nothing: it takes git directories (or checkouts) of the repositories. Not in
 # CI. docs/PLUGINS.md "Kobuki, with its own plug-in built unchanged" has the table of the last run.
 #
 #   tools/kobuki.sh MIRROR_DIR
