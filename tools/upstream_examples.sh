@@ -104,8 +104,8 @@ def check(n, sim):
     if n == 'velodyne_plugin':
         sim.run_for(3.0)
         props = rospy.ServiceProxy('/gazebo/get_joint_properties', GetJointProperties)
-        js = [j for j in ('velodyne_hdl-32::joint', 'joint') if props(j).success]
-        return 'joint rate %.3f rad/s after 3 s' % props(js[0]).rate[0] if js else 'no joint named joint'
+        js = [j for j in ('my_velodyne::velodyne_hdl-32::joint', 'velodyne_hdl-32::joint') if props(j).success]
+        return 'joint rate %.3f rad/s after 3 s' % props(js[0]).rate[0] if js else 'no joint velodyne_hdl-32::joint'
     return 'ran'
 
 rows = []

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <optional>
 #include <filesystem>
 #include <string>
@@ -127,7 +128,10 @@ void set_child(tinyxml2::XMLElement* e, const char* tag, const std::string& text
 
 class Flattener {
  public:
-  Flattener(tinyxml2::XMLDocument* out, std::vector<Diagnostic>* warnings) : out_(out), warnings_(warnings) {}
+  // flatten_includes: a model included inside a model is flattened into it (a document of SDF <= 1.7, which
+  // Gazebo 11 reads; libsdformat 12 refuses the `N::name` names in 1.8 and later, so there it stays nested)
+  Flattener(tinyxml2::XMLDocument* out, std::vector<Diagnostic>* warnings, bool flatten_includes)
+      : out_(out), warnings_(warnings), flatten_includes_(flatten_includes) {}
 
   // Replaces every <include> below parent by what it includes, with the include's overrides.
   void expand(tinyxml2::XMLElement* parent, const std::string& base_dir, const std::string& file,
@@ -160,6 +164,9 @@ class Flattener {
         expand(body, body_dir, body_file, std::string(body->Name()) + "[" + attr(body, "name") + "]", depth + 1);
         parent->InsertAfterChild(child, body);
         parent->DeleteChild(child);
+        // a model included inside a model is flattened into it (docs/COMPAT-sdf.md 16a)
+        if (flatten_includes_ && std::string(parent->Name()) == "model" && std::string(body->Name()) == "model")
+          flatten_into(parent, body, file, here);
       } else if (tag == "model") {
         expand(child, base_dir, file, where + "/model[" + attr(child, "name") + "]", depth);
       }
@@ -168,6 +175,54 @@ class Flattener {
   }
 
  private:
+  // Gazebo 11's sdformat 9 addNestedModel (sdf9 src/parser.cc) on the text: the included model's links, joints,
+  // frames and models are renamed `N::name`, with every attribute and text that names one exactly (its `"x"`,
+  // `'x'` and `>x<`), and move into the parent where the include was, with its plug-ins (and its <static> where the
+  // parent writes none); a link or model posed in N's frame (no relative_to) gets N's pose composed with its own,
+  // in the parent's frame. libsdformat 12 reads the `N::name` links back as a nested model N (its 1.7 -> 1.8
+  // unflattening), which the loader flattens again: the flat world loads as the world does.
+  static void flatten_into(tinyxml2::XMLElement* parent, tinyxml2::XMLElement* body, const std::string& file,
+                           const std::string& where) {
+    const std::string n = attr(body, "name");
+    std::map<std::string, std::string> names{{"__model__", n + "::__model__"}};
+    for (auto* c = body->FirstChildElement(); c; c = c->NextSiblingElement()) {
+      const std::string tag = c->Name();
+      if ((tag == "link" || tag == "joint" || tag == "frame" || tag == "model") && c->Attribute("name"))
+        names[c->Attribute("name")] = n + "::" + c->Attribute("name");
+    }
+    rename_refs(body, names);
+    const Eigen::Matrix4d Tn = parse_pose(find_text(body, "pose").value_or(""), file, where + "/pose");
+    tinyxml2::XMLElement* after = body;
+    for (tinyxml2::XMLElement* c = body->FirstChildElement(); c;) {
+      tinyxml2::XMLElement* next = c->NextSiblingElement();
+      const std::string tag = c->Name();
+      bool move = tag == "link" || tag == "joint" || tag == "frame" || tag == "model" || tag == "plugin" ||
+                  tag == "gripper" || (tag == "static" && !parent->FirstChildElement("static"));
+      if (move && (tag == "link" || tag == "model")) {
+        tinyxml2::XMLElement* pose = c->FirstChildElement("pose");
+        if (!pose || !pose->Attribute("relative_to")) {
+          const Eigen::Matrix4d Tc = parse_pose(find_text(c, "pose").value_or(""), file, where + "/pose");
+          set_child(c, "pose", format_pose(Tn * Tc));
+        }
+      }
+      if (move) {
+        parent->InsertAfterChild(after, c);  // moves c out of body
+        after = c;
+      }
+      c = next;
+    }
+    parent->DeleteChild(body);
+  }
+
+  // Every attribute value and element text that is a key of names becomes its value (addNestedModel's replace).
+  static void rename_refs(tinyxml2::XMLElement* e, const std::map<std::string, std::string>& names) {
+    for (const tinyxml2::XMLAttribute* a = e->FirstAttribute(); a; a = a->Next())
+      if (const auto it = names.find(a->Value()); it != names.end()) e->SetAttribute(a->Name(), it->second.c_str());
+    if (e->GetText() && !e->FirstChildElement())
+      if (const auto it = names.find(e->GetText()); it != names.end()) e->SetText(it->second.c_str());
+    for (auto* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) rename_refs(c, names);
+  }
+
   // The <model>, <light> or <actor> an <include> names, copied into the output document (not yet linked).
   tinyxml2::XMLElement* load_included(const tinyxml2::XMLElement* include, const std::string& base_dir,
                                       const std::string& file, const std::string& where, std::string* body_dir,
@@ -225,7 +280,17 @@ class Flattener {
 
   tinyxml2::XMLDocument* out_;
   std::vector<Diagnostic>* warnings_;  // nullptr: an include that resolves nowhere is an error
+  bool flatten_includes_;
 };
+
+// True for an <sdf version> below 1.8 (or none): the versions Gazebo 11's sdformat 9 reads.
+bool before_1_8(const tinyxml2::XMLElement* sdf) {
+  const char* v = sdf->Attribute("version");
+  if (!v) return true;
+  int major = 0, minor = 0;
+  if (std::sscanf(v, "%d.%d", &major, &minor) < 1) return true;
+  return major < 1 || (major == 1 && minor < 8);
+}
 
 // Nested models become top-level models 'parent::child' with composed poses, static when the parent is (the
 // loader's add_model does the same on the DOM). Each pass hoists one level; a parent's nested models land right
@@ -300,7 +365,7 @@ tinyxml2::XMLElement* flatten_document(const std::string& path, tinyxml2::XMLDoc
     throw LoadError(path, root ? root->GetLineNum() : 0, root ? root->Name() : "", "root element is not <sdf>");
   tinyxml2::XMLElement* world = root->FirstChildElement("world");
   if (!world) throw LoadError(path, root->GetLineNum(), "sdf", "no <world>");
-  Flattener(doc, warnings).expand(world, folder_of(abspath(path)), path, "world[" + attr(world, "name") + "]", 0);
+  Flattener(doc, warnings, before_1_8(root)).expand(world, folder_of(abspath(path)), path, "world[" + attr(world, "name") + "]", 0);
   hoist_nested(world, path);
   apply_state(world);
   return world;

@@ -305,26 +305,17 @@ JointType to_joint_type(const sdf::Joint& j, const sdf::JointAxis* axis, const s
 }
 
 // Rule 10: a model's plug-ins and its links' sensors through the URDF path's <gazebo> reader, so every kind resolves
-// the same; their lines are the SDF file's. mwhere: "model[M]".
-void read_plugins_and_sensors(const sdf::Model& sm, const std::string& source, const std::string& mwhere,
+// the same; their lines are the SDF file's. mwhere: "model[M]". The flattened model's (rule 16a): an included
+// model's plug-ins and sensors with their text renamed, on the links' flattened names.
+void read_plugins_and_sensors(const detail::FlatModel& f, const std::string& source, const std::string& mwhere,
                               RobotModel* m) {
   std::string xml = "<robot>";
-  std::vector<int> plugin_lines, sensor_lines;
-  const sdf::ElementPtr me = sm.Element();
-  if (me && me->HasElement("plugin"))
-    for (sdf::ElementPtr p = me->GetElement("plugin"); p; p = p->GetNextElement("plugin")) {
-      xml += "<gazebo>" + p->ToString("") + "</gazebo>";
-      plugin_lines.push_back(line_of(p));
-    }
-  std::vector<std::pair<const sdf::Sensor*, std::string>> sensors;
-  for (uint64_t i = 0; i < sm.LinkCount(); ++i) {
-    const sdf::Link* l = sm.LinkByIndex(i);
-    for (uint64_t k = 0; k < l->SensorCount(); ++k) {
-      const sdf::Sensor* s = l->SensorByIndex(k);
-      xml += "<gazebo reference=\"" + xml_escape(l->Name()) + "\">" + s->Element()->ToString("") + "</gazebo>";
-      sensors.emplace_back(s, l->Name());
-    }
+  std::vector<int> plugin_lines;
+  for (const auto& p : f.plugins) {
+    xml += "<gazebo>" + p.xml + "</gazebo>";
+    plugin_lines.push_back(p.line);
   }
+  for (const auto& sn : f.sensors) xml += "<gazebo reference=\"" + xml_escape(sn.link) + "\">" + sn.xml + "</gazebo>";
   xml += "</robot>";
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
@@ -335,11 +326,12 @@ void read_plugins_and_sensors(const sdf::Model& sm, const std::string& source, c
   for (size_t i = before; i < m->diagnostics.size(); ++i) m->diagnostics[i].line = 0;
   for (size_t i = 0; i < m->plugins.size() && i < plugin_lines.size(); ++i) m->plugins[i].line = plugin_lines[i];
   for (auto& spec : m->sensors) {
-    for (const auto& [s, link] : sensors) {
-      if (s->Name() != spec.name || link != spec.link) continue;
+    for (const auto& sn : f.sensors) {
+      if (sn.name != spec.name || sn.link != spec.link) continue;
+      const sdf::Sensor* s = sn.sensor;
       spec.line = line_of(s->Element());
       ignition::math::Pose3d sp;
-      if (s->SemanticPose().Resolve(sp, link).empty()) spec.pose = to_iso(sp);  // rule 4
+      if (s->SemanticPose().Resolve(sp, sn.local_link).empty()) spec.pose = to_iso(sp);  // rule 4
       int k = 0;
       if (s->Element()->HasElement("plugin"))
         for (sdf::ElementPtr p = s->Element()->GetElement("plugin"); p && k < static_cast<int>(spec.plugins.size());
@@ -351,14 +343,143 @@ void read_plugins_and_sensors(const sdf::Model& sm, const std::string& source, c
 
 }  // namespace
 
+namespace {
+
+// sdformat 9's replace_all (src/parser.cc): every `from`, the search going on after each replacement.
+void replace_all(std::string* text, const std::string& from, const std::string& to) {
+  if (from.empty()) return;
+  for (size_t at = text->find(from); at != std::string::npos; at = text->find(from, at + to.size()))
+    text->replace(at, from.size(), to);
+}
+
+// addNestedModel's renaming of an included model's text (sdf9 src/parser.cc): each name in `"x"`, `'x'` and `>x<`
+// becomes its new name, the names taken in the map's (sorted) order as upstream's std::map.
+std::string renamed(std::string text, const std::map<std::string, std::string>& names) {
+  for (const auto& [from, to] : names) {
+    replace_all(&text, "\"" + from + "\"", "\"" + to + "\"");
+    replace_all(&text, "'" + from + "'", "'" + to + "'");
+    replace_all(&text, ">" + from + "<", ">" + to + "<");
+  }
+  return text;
+}
+
+std::string renamed_name(const std::string& name, const std::map<std::string, std::string>& names) {
+  const auto it = names.find(name);
+  return it == names.end() ? name : it->second;
+}
+
+}  // namespace
+
 namespace detail {
 
-bool sdf_model_is_robot(const sdf::Model& m) {
-  if (m.JointCount() > 0) return true;
-  if (m.Element() && m.Element()->HasElement("plugin")) return true;
-  for (uint64_t i = 0; i < m.LinkCount(); ++i)
-    if (m.LinkByIndex(i)->SensorCount() > 0) return true;
-  return false;
+bool flattened_in_gazebo11(const sdf::Model& nested) {
+  const sdf::ElementPtr e = nested.Element();
+  if (!e) return false;
+  // an <include>: libsdformat 12 keeps the include element on the included model's element
+  if (e->GetIncludeElement()) return true;
+  // a name `a::b` of an SDF <= 1.7 file: libsdformat 12's 1.7 -> 1.8 converter made model `a` (a new XML element,
+  // with no line of its own); every <model> written in a file has its line
+  return !e->LineNumber() || *e->LineNumber() <= 0;
+}
+
+const FlatLink* FlatModel::link(const std::string& name) const {
+  for (const auto& l : links)
+    if (l.name == name) return &l;
+  return nullptr;
+}
+
+FlatModel flatten_model(const sdf::Model& m) {
+  FlatModel f;
+  std::set<const void*> seen;
+  auto add_link = [&](const sdf::Link* l) {
+    if (!l || !seen.insert(l).second) return;
+    ignition::math::Pose3d p;
+    l->SemanticPose().Resolve(p);  // rule 4: in the model frame
+    f.links.push_back({l->Name(), l, to_iso(p)});
+    for (uint64_t k = 0; k < l->SensorCount(); ++k) {
+      const sdf::Sensor* sn = l->SensorByIndex(k);
+      f.sensors.push_back({sn, sn->Name(), l->Name(), l->Name(), sn->Element() ? sn->Element()->ToString("") : ""});
+    }
+  };
+  auto add_joint = [&](const sdf::Joint* j) {
+    if (j && seen.insert(j).second) f.joints.push_back({j->Name(), j, ""});
+  };
+  auto add_model = [&](const sdf::Model* n) {
+    if (!n || !seen.insert(n).second) return;
+    ignition::math::Pose3d np;
+    n->SemanticPose().Resolve(np);  // N's frame in this model's frame
+    const Eigen::Isometry3d T = to_iso(np);
+    if (!flattened_in_gazebo11(*n)) {
+      f.nested.push_back({n->Name(), n, T});
+      return;
+    }
+    // sdformat 9's addNestedModel: N's links, joints, frames and models become ours as `N::name`, its text renamed
+    const FlatModel sub = flatten_model(*n);
+    const std::string pre = n->Name() + "::";
+    std::map<std::string, std::string> names{{"__model__", pre + "__model__"}};
+    for (const auto& l : sub.links) names[l.name] = pre + l.name;
+    for (const auto& j : sub.joints) names[j.name] = pre + j.name;
+    for (const auto& w : sub.nested) names[w.name] = pre + w.name;
+    for (const auto& fr : sub.frames) names[fr] = pre + fr;
+    for (const auto& l : sub.links) f.links.push_back({pre + l.name, l.link, T * l.pose});
+    for (const auto& j : sub.joints) f.joints.push_back({pre + j.name, j.joint, pre + j.prefix});
+    for (const auto& p : sub.plugins)
+      f.plugins.push_back({renamed(p.xml, names), renamed_name(p.name, names), p.filename, p.line});
+    for (const auto& sn : sub.sensors)
+      f.sensors.push_back({sn.sensor, renamed_name(sn.name, names), pre + sn.link, sn.local_link,
+                           renamed(sn.xml, names)});
+    for (const auto& w : sub.nested) f.nested.push_back({pre + w.name, w.model, T * w.pose});
+    for (const auto& fr : sub.frames) f.frames.push_back(pre + fr);
+    f.frames.push_back(pre + "__model__");  // the frame addNestedModel injects
+    if (!f.is_static) f.is_static = sub.is_static;
+  };
+  // the model's elements in document order (an included model sits where its <include> was)
+  if (const sdf::ElementPtr me = m.Element())
+    for (sdf::ElementPtr e = me->GetFirstElement(); e; e = e->GetNextElement()) {
+      const std::string tag = e->GetName();
+      const std::string name = e->HasAttribute("name") ? e->GetAttribute("name")->GetAsString() : "";
+      if (tag == "link") {
+        add_link(m.LinkByName(name));
+      } else if (tag == "joint") {
+        add_joint(m.JointByName(name));
+      } else if (tag == "model") {
+        add_model(m.ModelByName(name));
+      } else if (tag == "frame") {
+        f.frames.push_back(name);
+      } else if (tag == "plugin") {
+        const std::string file = e->HasAttribute("filename") ? e->GetAttribute("filename")->GetAsString() : "";
+        f.plugins.push_back({e->ToString(""), name, file, line_of(e)});
+      } else if (tag == "static") {
+        if (!f.is_static) f.is_static = e->Get<bool>();
+      }
+    }
+  // whatever the walk did not meet (a model without elements, built in code): in the DOM's order
+  for (uint64_t i = 0; i < m.LinkCount(); ++i) add_link(m.LinkByIndex(i));
+  for (uint64_t i = 0; i < m.JointCount(); ++i) add_joint(m.JointByIndex(i));
+  for (uint64_t i = 0; i < m.ModelCount(); ++i) add_model(m.ModelByIndex(i));
+  return f;
+}
+
+void warn_plugins_dropped(const FlatModel& f, const std::string& model, const std::string& why,
+                          std::vector<Diagnostic>* diagnostics) {
+  for (const auto& p : f.plugins)
+    diagnostics->push_back({Severity::Warning, "plugin-not-loaded", "model[" + model + "]/plugin[" + p.name + "]",
+                            "plug-in '" + p.name + "' (" + p.filename + ") of model '" + model +
+                                "' is not loaded: " + why,
+                            p.line});
+  for (const auto& sn : f.sensors) {
+    const sdf::ElementPtr se = sn.sensor->Element();
+    if (!se || !se->HasElement("plugin")) continue;
+    for (sdf::ElementPtr p = se->GetElement("plugin"); p; p = p->GetNextElement("plugin")) {
+      const std::string name = p->HasAttribute("name") ? p->GetAttribute("name")->GetAsString() : "";
+      const std::string file = p->HasAttribute("filename") ? p->GetAttribute("filename")->GetAsString() : "";
+      diagnostics->push_back({Severity::Warning, "plugin-not-loaded",
+                              "model[" + model + "]/link[" + sn.link + "]/sensor[" + sn.name + "]/plugin[" + name + "]",
+                              "plug-in '" + name + "' (" + file + ") of sensor '" + sn.name + "' of model '" + model +
+                                  "' is not loaded: " + why,
+                              line_of(p)});
+    }
+  }
 }
 
 SdfRobot convert_sdf_model(const sdf::Model& sm, const std::string& source, const LoadOptions& options) {
@@ -366,34 +487,42 @@ SdfRobot convert_sdf_model(const sdf::Model& sm, const std::string& source, cons
   RobotModel& m = out.model;
   m.name = sm.Name();
   m.source = source;
-  out.is_static = sm.Static();
   const std::string mwhere = "model[" + sm.Name() + "]";
-  if (sm.ModelCount() > 0)
-    throw LoadError(source, line_of(sm.Element()), mwhere, "nested models are not simulated by car as one robot");
-  if (sm.LinkCount() == 0) throw LoadError(source, line_of(sm.Element()), mwhere, "the model has no <link>");
+  // rule 16a: the models it includes flattened into it, as Gazebo 11 loads them; a <model> written inside it is not
+  const FlatModel f = flatten_model(sm);
+  out.is_static = f.is_static.value_or(false);
+  if (!f.nested.empty())
+    throw LoadError(source, line_of(f.nested.front().model->Element()), mwhere + "/model[" + f.nested.front().name + "]",
+                    "nested models are not simulated by car as one robot");
+  if (f.links.empty()) throw LoadError(source, line_of(sm.Element()), mwhere, "the model has no <link>");
 
-  for (uint64_t i = 0; i < sm.LinkCount(); ++i) {
-    const sdf::Link* l = sm.LinkByIndex(i);
-    m.links.push_back(convert_link(*l, mwhere + "/link[" + l->Name() + "]", &m));
+  for (const auto& fl : f.links) {
+    m.links.push_back(convert_link(*fl.link, mwhere + "/link[" + fl.name + "]", &m));
+    m.links.back().name = fl.name;
   }
+  // a link's frame in the flattened model's frame
+  auto pose_of = [&](const std::string& link) { return f.link(link)->pose; };
 
   // Joints: parent and child resolved through frames; the child's pose in the parent gives the joint origin.
   std::map<std::string, std::string> parent_of;
   bool world_parent = false;
-  for (uint64_t i = 0; i < sm.JointCount(); ++i) {
-    const sdf::Joint* sj = sm.JointByIndex(i);
-    const std::string where = mwhere + "/joint[" + sj->Name() + "]";
+  for (const auto& fj : f.joints) {
+    const sdf::Joint* sj = fj.joint;
+    const std::string where = mwhere + "/joint[" + fj.name + "]";
     const int line = line_of(sj->Element());
     const sdf::JointAxis* axis = sj->Axis(0);
     Joint j;
-    j.name = sj->Name();
+    j.name = fj.name;
     j.type = to_joint_type(*sj, axis, where, line, source);
-    std::string parent, child;
-    if (!sj->ResolveParentLink(parent).empty() || parent.empty()) parent = sj->ParentLinkName();
-    if (!sj->ResolveChildLink(child).empty() || child.empty()) child = sj->ChildLinkName();
-    if (child == "world" || !sm.LinkByName(child))
+    // the names in the joint's own model's scope, then in the flattened model's (`N::` before an included one's)
+    std::string local_parent, local_child;
+    if (!sj->ResolveParentLink(local_parent).empty() || local_parent.empty()) local_parent = sj->ParentLinkName();
+    if (!sj->ResolveChildLink(local_child).empty() || local_child.empty()) local_child = sj->ChildLinkName();
+    const std::string parent = local_parent == "world" ? local_parent : fj.prefix + local_parent;
+    const std::string child = fj.prefix + local_child;
+    if (local_child == "world" || !f.link(child))
       throw LoadError(source, line, where + "/child", "child '" + child + "' is not a link of the model");
-    if (parent != "world" && !sm.LinkByName(parent))
+    if (parent != "world" && !f.link(parent))
       throw LoadError(source, line, where + "/parent", "parent '" + parent + "' is not a link of the model");
     if (parent_of.count(child))
       throw LoadError(source, line, where, "link '" + child + "' already has the parent joint of link '" +
@@ -402,22 +531,28 @@ SdfRobot convert_sdf_model(const sdf::Model& sm, const std::string& source, cons
     j.parent = parent;
     j.child = child;
     world_parent = world_parent || parent == "world";
-    // rule 4: child link frame in the parent link frame (the model frame for `world`)
-    ignition::math::Pose3d cp;
-    const sdf::Errors e = parent == "world" ? sm.LinkByName(child)->SemanticPose().Resolve(cp)
-                                            : sm.LinkByName(child)->SemanticPose().Resolve(cp, parent);
-    refuse_errors(source, e, nullptr);
-    j.origin = to_iso(cp);
+    // rule 4: child link frame in the parent link frame (the model frame for `world`); the DOM resolves it within
+    // one model's scope, the flattened poses across scopes
+    if (parent == "world") {
+      j.origin = pose_of(child);
+    } else if (local_parent.find("::") == std::string::npos && local_child.find("::") == std::string::npos) {
+      // both links of the joint's own model: the child link's scope is the joint's
+      ignition::math::Pose3d cp;
+      refuse_errors(source, f.link(child)->link->SemanticPose().Resolve(cp, local_parent), nullptr);
+      j.origin = to_iso(cp);
+    } else {
+      j.origin = pose_of(parent).inverse() * pose_of(child);
+    }
     // rule 6: the joint frame in the child link; car's joint frame is the child's
     ignition::math::Pose3d jp;
-    if (sj->SemanticPose().Resolve(jp, child).empty() && !to_iso(jp).isApprox(Eigen::Isometry3d::Identity(), 1e-9))
+    if (sj->SemanticPose().Resolve(jp, local_child).empty() && !to_iso(jp).isApprox(Eigen::Isometry3d::Identity(), 1e-9))
       m.diagnostics.push_back({Severity::Warning, "joint-pose", where + "/pose",
                                "the joint frame is offset from child link '" + child +
                                    "'; car turns the joint about the child link's origin",
                                line});
     if (j.type != JointType::Fixed && axis) {
       ignition::math::Vector3d xyz;
-      if (!axis->ResolveXyz(xyz, child).empty()) xyz = axis->Xyz();
+      if (!axis->ResolveXyz(xyz, local_child).empty()) xyz = axis->Xyz();
       j.axis_as_written = Eigen::Vector3d(axis->Xyz().X(), axis->Xyz().Y(), axis->Xyz().Z());
       const Eigen::Vector3d a(xyz.X(), xyz.Y(), xyz.Z());
       if (a.norm() < 1e-9)
@@ -444,17 +579,15 @@ SdfRobot convert_sdf_model(const sdf::Model& sm, const std::string& source, cons
   if (out.is_static || world_parent) {
     for (const auto& r : roots) {
       if (!out.is_static) {
-        throw LoadError(source, line_of(sm.LinkByName(r)->Element()), mwhere + "/link[" + r + "]",
+        throw LoadError(source, line_of(f.link(r)->link->Element()), mwhere + "/link[" + r + "]",
                         "link '" + r + "' is joined to neither `world` nor another link; car simulates one tree");
       }
-      ignition::math::Pose3d lp;
-      sm.LinkByName(r)->SemanticPose().Resolve(lp);
       Joint j;
       j.name = "world_static_" + r;
       j.type = JointType::Fixed;
       j.parent = "world";
       j.child = r;
-      j.origin = to_iso(lp);
+      j.origin = pose_of(r);
       m.joints.push_back(j);
     }
     Link world;
@@ -465,19 +598,23 @@ SdfRobot convert_sdf_model(const sdf::Model& sm, const std::string& source, cons
   } else {
     if (roots.size() != 1) {
       const std::string extra = roots.size() > 1 ? roots[1] : m.links.front().name;
+      // a forest of a flattened model (rule 16a) says where its links came from
+      const bool included = roots.size() > 1 && (roots[0].find("::") != std::string::npos ||
+                                                 roots[1].find("::") != std::string::npos);
       throw LoadError(source, line_of(sm.Element()), mwhere + "/link[" + extra + "]",
                       roots.size() > 1 ? "link '" + extra + "' is joined to no other link (a second free body); car "
-                                                                "simulates one tree of links per model"
+                                                                "simulates one tree of links per model" +
+                                             std::string(included ? " (an included model's links are the model's "
+                                                                    "own, as Gazebo 11 flattens an <include>)"
+                                                                  : "")
                                        : "the joints form a loop; car simulates a tree of links");
     }
     m.root_link = roots.front();
-    ignition::math::Pose3d lp;
-    sm.LinkByName(m.root_link)->SemanticPose().Resolve(lp);
-    m.root_in_model = to_iso(lp);
+    m.root_in_model = pose_of(m.root_link);
     out.root_pose = model_pose * m.root_in_model;
   }
 
-  read_plugins_and_sensors(sm, source, mwhere, &m);
+  read_plugins_and_sensors(f, source, mwhere, &m);
 
   detail::find_world_anchor(&m);
   if (options.throw_on_error)

@@ -5,7 +5,10 @@
 
 #include <sdf/Error.hh>
 #include <sdf/Geometry.hh>
+#include <sdf/Link.hh>
+#include <sdf/Joint.hh>
 #include <sdf/Model.hh>
+#include <sdf/Sensor.hh>
 #include <sdf/Visual.hh>
 
 #include <optional>
@@ -44,12 +47,65 @@ std::optional<WorldVisual> read_visual(const sdf::Visual& v, const std::string& 
 // The one reader of inertials, for robots and world models alike.
 Inertial read_inertial(const sdf::Link& l);
 
+// A model as Gazebo 11 loads it (docs/COMPAT-sdf.md 16a): the nested models libsdformat 12 made from an <include>
+// (or from a name `a::b` in an SDF <= 1.7 file) flattened into it as sdformat 9's addNestedModel does, their links,
+// joints, frames and written nested models named `N::name`, their plug-in and sensor text renamed, their plug-ins
+// appended; the <model>s written inside it kept apart. Everything in document order.
+struct FlatLink {
+  std::string name;           // `N::link` for an included model N's link
+  const sdf::Link* link;      // in its own model's scope
+  Eigen::Isometry3d pose;     // the link frame in the flattened model's frame
+};
+struct FlatJoint {
+  std::string name;           // `N::joint`
+  const sdf::Joint* joint;    // its parent and child are named in its own model's scope
+  std::string prefix;         // what turns a name of that scope into the flattened model's (`N::`)
+};
+struct FlatPlugin {
+  std::string xml;            // the <plugin> element's text, renamed
+  std::string name, filename;
+  int line = 0;
+};
+struct FlatSensor {
+  const sdf::Sensor* sensor;
+  std::string name;           // after the renaming (a sensor named like a link of its model is renamed too)
+  std::string link;           // the flattened link's name
+  std::string local_link;     // the link's name in the sensor's own scope (for SemanticPose)
+  std::string xml;            // the <sensor> element's text, renamed
+};
+struct FlatNested {
+  std::string name;           // `W`, or `N::W` for a model written inside an included model N
+  const sdf::Model* model;
+  Eigen::Isometry3d pose;     // its frame in the flattened model's frame
+};
+struct FlatModel {
+  std::vector<FlatLink> links;
+  std::vector<FlatJoint> joints;
+  std::vector<FlatPlugin> plugins;      // the model's <plugin>s (not its sensors')
+  std::vector<FlatSensor> sensors;
+  std::vector<FlatNested> nested;       // written <model>s: models of their own in Gazebo 11
+  std::vector<std::string> frames;      // explicit frames, for the renaming
+  std::optional<bool> is_static;        // the first <static> written in document order (the model's own or an
+                                        // included model's, appended as sdformat 9 appends it)
+  // Rule 16: a joint, a plug-in or a sensor anywhere in it.
+  bool is_robot() const { return !joints.empty() || !plugins.empty() || !sensors.empty(); }
+  const FlatLink* link(const std::string& name) const;
+};
+FlatModel flatten_model(const sdf::Model& m);
+
+// True when libsdformat 12 made this nested model from an <include> or from a name `a::b` (it has no element line
+// of its own), so Gazebo 11 would have flattened it into its parent.
+bool flattened_in_gazebo11(const sdf::Model& nested);
+
+// A warning `plugin-not-loaded` for each <plugin> of f (its sensors' too) that car leaves out, naming the plug-in,
+// its file and model `model`, saying why: a plug-in never vanishes silently.
+void warn_plugins_dropped(const FlatModel& f, const std::string& model, const std::string& why,
+                          std::vector<Diagnostic>* diagnostics);
+
 // Converts one model; the returned root_pose is the root link in the frame the model's own pose is given in.
 // Throws LoadError naming source, element and reason for what car cannot simulate.
 SdfRobot convert_sdf_model(const sdf::Model& m, const std::string& source, const LoadOptions& options);
 
-// True when a world model needs the robot path: a <plugin> (model or sensor), a <sensor>, or a joint.
-bool sdf_model_is_robot(const sdf::Model& m);
 
 }  // namespace detail
 }  // namespace car_sim

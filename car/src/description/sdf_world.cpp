@@ -112,37 +112,44 @@ void apply_state(const sdf::World& w, WorldDescription* desc) {
   }
 }
 
-// A model and, after it, its nested models as models of their own: "parent::child", pose composed, static when
-// the parent is (the world tools flatten nested models the same way).
-void add_model(const sdf::Model& m, const std::string& prefix, const Eigen::Isometry3d& parent_pose, bool parent_static,
-               WorldDescription* d) {
-  // rule 16 of docs/COMPAT-sdf.md: a top-level model with plug-ins, sensors or joints is a robot
-  if (prefix.empty() && m.ModelCount() == 0 && detail::sdf_model_is_robot(m)) {
+// A world model as Gazebo 11 loads it (docs/COMPAT-sdf.md 16 and 16a): the models it includes flattened into it;
+// a robot when it then has a joint, a plug-in or a sensor and no <model> written inside it; else a world model,
+// followed by its written nested models as models of their own, "parent::child", pose composed, static when the
+// parent is (the world tools flatten nested models the same way). name: the model's name in the world; pose: its
+// frame in the world; top: a model of the world itself (not a nested one).
+void add_model(const sdf::Model& m, const std::string& name, const Eigen::Isometry3d& pose, bool parent_static,
+               bool top, WorldDescription* d) {
+  const detail::FlatModel flat = detail::flatten_model(m);
+  if (top && flat.nested.empty() && flat.is_robot()) {
     WorldRobotDesc rd;
     rd.name = m.Name();
     rd.robot = detail::convert_sdf_model(m, d->source, LoadOptions());
-    ignition::math::Pose3d wp;
-    m.SemanticPose().Resolve(wp);
     // convert_sdf_model composed the raw <pose> into root_pose; the resolved one replaces it
-    rd.pose = to_iso(wp) * to_iso(m.RawPose()).inverse();
+    rd.pose = pose * to_iso(m.RawPose()).inverse();
     d->robots.push_back(std::move(rd));
     return;
   }
   WorldModelDesc md;
-  md.name = prefix.empty() ? m.Name() : prefix + "::" + m.Name();
-  md.is_static = m.Static() || parent_static;
-  ignition::math::Pose3d mp;
-  m.SemanticPose().Resolve(mp);
-  md.pose = parent_pose * to_iso(mp);
-  for (uint64_t k = 0; k < m.LinkCount(); ++k) md.links.push_back(read_link(*m.LinkByIndex(k), md.name, d));
-  if (m.JointCount() > 0 && m.ModelCount() > 0)
+  md.name = name;
+  md.is_static = flat.is_static.value_or(false) || parent_static;
+  md.pose = pose;
+  for (const auto& fl : flat.links) {
+    md.links.push_back(read_link(*fl.link, md.name, d));
+    md.links.back().name = fl.name;
+    md.links.back().pose = fl.pose;
+  }
+  // what only a robot simulates is left out with a warning, never silently
+  const std::string why = top ? "car simulates a model with nested models as world bodies, not as a robot"
+                              : "car simulates a nested model as world bodies, not as a robot";
+  if (!flat.joints.empty())
     d->diagnostics.push_back({Severity::Warning, "nested-model-joints", "model[" + md.name + "]",
-                              "joints of a model with nested models are not simulated", 0});
-  const Eigen::Isometry3d pose = md.pose;
+                              top ? "joints of a model with nested models are not simulated"
+                                  : "joints of a nested model are not simulated",
+                              0});
+  detail::warn_plugins_dropped(flat, md.name, why, &d->diagnostics);
   const bool is_static = md.is_static;
-  const std::string name = md.name;
   d->models.push_back(std::move(md));
-  for (uint64_t i = 0; i < m.ModelCount(); ++i) add_model(*m.ModelByIndex(i), name, pose, is_static, d);
+  for (const auto& n : flat.nested) add_model(*n.model, name + "::" + n.name, pose * n.pose, is_static, false, d);
 }
 
 // The <plugin>s directly in <world> (Gazebo's World::LoadPlugins reads the same): through the URDF path's <gazebo>
@@ -196,7 +203,12 @@ WorldDescription convert(const sdf::Root& root, const std::string& source) {
     if (dir.Length() > 0) d.sun_direction = Eigen::Vector3d(dir.X(), dir.Y(), dir.Z()).normalized();
     break;
   }
-  for (uint64_t i = 0; i < w->ModelCount(); ++i) add_model(*w->ModelByIndex(i), "", Eigen::Isometry3d::Identity(), false, &d);
+  for (uint64_t i = 0; i < w->ModelCount(); ++i) {
+    const sdf::Model* m = w->ModelByIndex(i);
+    ignition::math::Pose3d wp;
+    m->SemanticPose().Resolve(wp);
+    add_model(*m, m->Name(), to_iso(wp), false, true, &d);
+  }
   read_world_plugins(w->Element(), source, &d);
   apply_state(*w, &d);
   detail::validate_world(&d);  // validate.cpp: step size, gravity, poses, masses, shape sizes

@@ -772,12 +772,16 @@ void World::Impl::apply_jobs(uint64_t tick) {
 LinkRef World::find_link(const std::string& name) const {
   const auto [model, link] = scoped(name);
   for (const auto& m : model_names()) {
-    if (!model.empty() && m != model) continue;
+    // the link's scoped name "MODEL::LINK", or its name, which may hold "::" itself (an included model's
+    // "N::link", docs/COMPAT-sdf.md 16a), as Gazebo 11's Model::GetLink takes either
+    const std::string own = name.rfind(m + "::", 0) == 0 ? name.substr(m.size() + 2) : "";
     if (const auto* r = impl_->find(m)) {
-      if (r->body->has_link(link)) return {m, link, true};
+      for (const std::string& l : {own, name})
+        if (!l.empty() && r->body->has_link(l)) return {m, l, true};
     } else if (const WorldModelDesc* d = desc_.find_model(m)) {
-      for (const auto& l : d->links)
-        if (l.name == link) return {m, link, false};
+      for (const std::string& l : {own, name})
+        for (const auto& wl : d->links)
+          if (!l.empty() && wl.name == l) return {m, l, false};
     }
   }
   if (!model.empty() && !has_model(model)) throw std::invalid_argument("no model named '" + model + "'");
@@ -889,12 +893,13 @@ namespace {
 
 // (robot, joint) of a moving joint by scoped or plain name.
 template <class Robots>
+// Gazebo 11's Model::GetJoint, model by model (gazebo_ros get_joint_properties): the joint's scoped name
+// "MODEL::JOINT" or its name, which may hold "::" itself (an included model's "N::joint", docs/COMPAT-sdf.md 16a).
 std::pair<const RobotInfo*, const Joint*> find_joint(const Robots& robots, const std::string& name) {
-  const auto [model, joint] = scoped(name);
   for (const auto& r : robots) {
-    if (!model.empty() && r->info.name != model) continue;
     for (const auto& j : r->info.model.joints)
-      if (j.name == joint && j.type != JointType::Fixed) return {&r->info, &j};
+      if ((j.name == name || r->info.name + "::" + j.name == name) && j.type != JointType::Fixed)
+        return {&r->info, &j};
   }
   throw std::invalid_argument("no robot has a moving joint named '" + name + "'");
 }
@@ -968,28 +973,23 @@ void World::apply_joint_effort(const std::string& joint, double effort, double s
                             last_tick(start, duration, dt(), tick_)});
 }
 
+// A link's or joint's name, or its scoped name "MODEL::NAME" (find_joint, find_link).
 int World::clear_wrenches(const std::string& link) {
-  const auto scoped_name = scoped(link);
-  const std::string &model = scoped_name.first, &name = scoped_name.second;
   auto& w = impl_->wrenches;
   const size_t before = w.size();
   w.erase(std::remove_if(w.begin(), w.end(),
                          [&](const Impl::WrenchJob& j) {
-                           return j.link.link == name && (model.empty() || j.link.model == model);
+                           return j.link.link == link || j.link.model + "::" + j.link.link == link;
                          }),
           w.end());
   return static_cast<int>(before - w.size());
 }
 
 int World::clear_joint_efforts(const std::string& joint) {
-  const auto scoped_name = scoped(joint);
-  const std::string &model = scoped_name.first, &name = scoped_name.second;
   auto& e = impl_->efforts;
   const size_t before = e.size();
   e.erase(std::remove_if(e.begin(), e.end(),
-                         [&](const Impl::EffortJob& j) {
-                           return j.joint == name && (model.empty() || j.robot == model);
-                         }),
+                         [&](const Impl::EffortJob& j) { return j.joint == joint || j.robot + "::" + j.joint == joint; }),
           e.end());
   return static_cast<int>(before - e.size());
 }
