@@ -1,44 +1,21 @@
 // A model plug-in on a model that only includes another model, as Gazebo's "Build a plugin" tutorial attaches its
 // velodyne plug-in (docs/COMPAT-sdf.md 16a, docs/PLUGINS.md): Gazebo 11 flattens the include into the model, so the
 // plug-in's Model has the included joint (GetJointCount() == 1, GetJoints()[0]) and its JointController turns it.
-// Our own model file (a temporary GAZEBO_MODEL_PATH folder) and the test plug-in test/gazebo/plugins/velocity_pid.cc.
+// The included model is test/data/nested_models/spinner, the plug-in test/gazebo/plugins/velocity_pid.cc.
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <optional>
 #include <string>
+#include <vector>
 
 #include "car_sim/world.hpp"
+#include "test_util.hpp"
 
 using namespace car_sim;
 
 namespace {
 
 const std::string kDir = CAR_GAZEBO_TEST_PLUGINS;
-
-// spinner: base (2 kg) and, 0.2 m above it on the continuous joint axle (about z), rotor (1 kg); Izz 0.5 kg m^2
-// each, both centres of mass on the axis.
-const char* kSpinner = R"(<?xml version="1.0"?>
-<sdf version="1.6">
-  <model name="spinner">
-    <link name="base">
-      <pose>0 0 0.1 0 0 0</pose>
-      <inertial><mass>2</mass><inertia><ixx>0.5</ixx><iyy>0.5</iyy><izz>0.5</izz></inertia></inertial>
-    </link>
-    <link name="rotor">
-      <pose>0 0 0.3 0 0 0</pose>
-      <inertial><mass>1</mass><inertia><ixx>0.5</ixx><iyy>0.5</iyy><izz>0.5</izz></inertia></inertial>
-    </link>
-    <joint name="axle" type="revolute">
-      <parent>base</parent>
-      <child>rotor</child>
-      <axis><xyz>0 0 1</xyz><limit><lower>-1e16</lower><upper>1e16</upper></limit></axis>
-    </joint>
-  </model>
-</sdf>)";
 
 // holder includes spinner and carries the plug-in, as the tutorial's my_velodyne; no gravity, 1 ms steps.
 const char* kWorld = R"(<?xml version="1.0"?>
@@ -54,33 +31,12 @@ const char* kWorld = R"(<?xml version="1.0"?>
   </world>
 </sdf>)";
 
-// The model folder and the test plug-ins' folder as the search paths for one test, put back after.
+// The test plug-ins' folder and test/data/nested_models (its one model, spinner: base (2 kg) and, 0.2 m above it on
+// the continuous joint axle (about z), rotor (1 kg); Izz 0.5 kg m^2 each, both centres of mass on the axis) as the
+// search paths for one test, put back after.
 class GazeboNested : public ::testing::Test {
  protected:
-  void SetUp() override {
-    for (const char* v : {"GAZEBO_PLUGIN_PATH", "GAZEBO_MODEL_PATH"}) {
-      const char* old = std::getenv(v);
-      saved_.emplace_back(v, old ? std::optional<std::string>(old) : std::nullopt);
-    }
-    dir_ = std::filesystem::temp_directory_path() / ("car_gazebo_nested_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir_ / "spinner");
-    std::ofstream(dir_ / "spinner" / "model.config")
-        << "<?xml version=\"1.0\"?><model><name>spinner</name><sdf version=\"1.6\">model.sdf</sdf></model>";
-    std::ofstream(dir_ / "spinner" / "model.sdf") << kSpinner;
-    setenv("GAZEBO_PLUGIN_PATH", kDir.c_str(), 1);
-    setenv("GAZEBO_MODEL_PATH", dir_.c_str(), 1);
-  }
-  void TearDown() override {
-    for (const auto& [v, old] : saved_) {
-      if (old)
-        setenv(v.c_str(), old->c_str(), 1);
-      else
-        unsetenv(v.c_str());
-    }
-    std::filesystem::remove_all(dir_);
-  }
-  std::filesystem::path dir_;
-  std::vector<std::pair<std::string, std::optional<std::string>>> saved_;
+  ScopedEnv env_{{"GAZEBO_PLUGIN_PATH", kDir}, {"GAZEBO_MODEL_PATH", data_path("nested_models")}};
 };
 
 }  // namespace

@@ -7,11 +7,11 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <optional>
 #include <string>
 
 #include "car_sim/shared_plugin.hpp"
 #include "car_sim/world.hpp"
+#include "test_util.hpp"
 
 using namespace car_sim;
 
@@ -22,24 +22,7 @@ const std::string kDir = CAR_GAZEBO_TEST_PLUGINS;
 // The search path set to the test plug-ins' folder alone for one test, and put back after.
 class GazeboPlugins : public ::testing::Test {
  protected:
-  void SetUp() override {
-    for (const char* v : {"GAZEBO_PLUGIN_PATH", "CMAKE_PREFIX_PATH", "LD_LIBRARY_PATH"}) {
-      const char* old = std::getenv(v);
-      saved_.emplace_back(v, old ? std::optional<std::string>(old) : std::nullopt);
-    }
-    setenv("GAZEBO_PLUGIN_PATH", kDir.c_str(), 1);
-    setenv("CMAKE_PREFIX_PATH", "/nowhere/a", 1);
-    setenv("LD_LIBRARY_PATH", "/nowhere/b", 1);
-  }
-  void TearDown() override {
-    for (const auto& [v, old] : saved_) {
-      if (old)
-        setenv(v.c_str(), old->c_str(), 1);
-      else
-        unsetenv(v.c_str());
-    }
-  }
-  std::vector<std::pair<std::string, std::optional<std::string>>> saved_;
+  ScopedEnv env_{{"GAZEBO_PLUGIN_PATH", kDir}, {"CMAKE_PREFIX_PATH", "/nowhere/a"}, {"LD_LIBRARY_PATH", "/nowhere/b"}};
 };
 
 // A 2 kg box (Izz 0.5) with (wheel true) a 1 kg wheel (Izz 0.5) on a continuous joint about z through both coms,
@@ -239,8 +222,7 @@ TEST_F(GazeboPlugins, DeletingAControlledModelLeavesTheOthersRunning) {
 
 // A folder on two of the paths is searched once, where it first comes.
 TEST_F(GazeboPlugins, AFolderOnTwoPathsIsSearchedOnce) {
-  setenv("CMAKE_PREFIX_PATH", "/nowhere/a", 1);
-  setenv("LD_LIBRARY_PATH", ("/nowhere/a/lib:" + kDir + ":/nowhere/b").c_str(), 1);
+  env_.set("LD_LIBRARY_PATH", "/nowhere/a/lib:" + kDir + ":/nowhere/b");
   EXPECT_EQ(shared_plugin_search_path(), (std::vector<std::string>{kDir, "/nowhere/a/lib", "/nowhere/b"}));
 }
 
@@ -248,11 +230,14 @@ TEST_F(GazeboPlugins, AFolderOnTwoPathsIsSearchedOnce) {
 // search path loads instead (the test build's model push, built as libgazebo_ros_planar_move.so, pushes at 0.3 m/s).
 TEST_F(GazeboPlugins, TheSwitchLoadsTheLibraryForANativeName) {
   EXPECT_EQ(plugin_kind("libgazebo_ros_planar_move.so"), "planar_move");
-  setenv("CAR_UPSTREAM_PLUGINS", "libfoo.so,libgazebo_ros_planar_move.so", 1);
-  EXPECT_EQ(plugin_kind("libgazebo_ros_planar_move.so"), "shared_library");
-  EXPECT_EQ(plugin_kind("libgazebo_ros_diff_drive.so"), "diff_drive");  // not listed
-  auto w = world_with(R"(<plugin name="move" filename="libgazebo_ros_planar_move.so"/>)");
-  unsetenv("CAR_UPSTREAM_PLUGINS");
+  std::unique_ptr<World> w;
+  {
+    // the switch is read at load: the world keeps the library after the variable is gone
+    ScopedEnv upstream{{"CAR_UPSTREAM_PLUGINS", "libfoo.so,libgazebo_ros_planar_move.so"}};
+    EXPECT_EQ(plugin_kind("libgazebo_ros_planar_move.so"), "shared_library");
+    EXPECT_EQ(plugin_kind("libgazebo_ros_diff_drive.so"), "diff_drive");  // not listed
+    w = world_with(R"(<plugin name="move" filename="libgazebo_ros_planar_move.so"/>)");
+  }
   w->step(1000);
   EXPECT_NEAR(w->model_state("box").pose.translation().x(), 0.3, 1e-9);
 }

@@ -6,10 +6,10 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <optional>
 #include <string>
 
 #include "car_sim/world.hpp"
+#include "test_util.hpp"
 
 using namespace car_sim;
 
@@ -21,28 +21,13 @@ const std::string kDir = CAR_GAZEBO_TEST_PLUGINS;
 // cleared.
 class GazeboSensors : public ::testing::Test {
  protected:
+  ScopedEnv env_{{"GAZEBO_PLUGIN_PATH", kDir}, {"CMAKE_PREFIX_PATH", "/nowhere/a"}, {"LD_LIBRARY_PATH", "/nowhere/b"}};
   void SetUp() override {
-    for (const char* v : {"GAZEBO_PLUGIN_PATH", "CMAKE_PREFIX_PATH", "LD_LIBRARY_PATH"}) {
-      const char* old = std::getenv(v);
-      saved_.emplace_back(v, old ? std::optional<std::string>(old) : std::nullopt);
-    }
-    setenv("GAZEBO_PLUGIN_PATH", kDir.c_str(), 1);
-    setenv("CMAKE_PREFIX_PATH", "/nowhere/a", 1);
-    setenv("LD_LIBRARY_PATH", "/nowhere/b", 1);
     if (void* h = dlopen((kDir + "/libsensor_probe.so").c_str(), RTLD_LAZY | RTLD_NOLOAD)) {
       reinterpret_cast<void (*)()>(dlsym(h, "car_test_probe_clear"))();
       dlclose(h);
     }
   }
-  void TearDown() override {
-    for (const auto& [v, old] : saved_) {
-      if (old)
-        setenv(v.c_str(), old->c_str(), 1);
-      else
-        unsetenv(v.c_str());
-    }
-  }
-  std::vector<std::pair<std::string, std::optional<std::string>>> saved_;
 };
 
 // What the probe recorded under "SENSOR/WHAT"; NaN when nothing.
@@ -82,7 +67,8 @@ WorldDescription wall_world(const std::string& background = "0.7 0.7 0.7 1") {
 </world></sdf>)");
 }
 
-Eigen::Isometry3d at(double x, double y, double z) {
+// A pose at (x, y, z) [m], not turned.
+Eigen::Isometry3d translated(double x, double y, double z) {
   Eigen::Isometry3d p = Eigen::Isometry3d::Identity();
   p.translation() = Eigen::Vector3d(x, y, z);
   return p;
@@ -111,7 +97,7 @@ std::vector<std::string> diags(const World& w, const std::string& code) {
 // the side beams (+-0.1 rad) at 1.75 / cos(0.1) = 1.758753 m (their y = 1.75 tan 0.1 = 0.1756 m is on the wall).
 TEST_F(GazeboSensors, RaySensorPluginReadsTheRangesToAWall) {
   World w(wall_world());
-  w.spawn(load_urdf_string(box(ray_sensor()), "box"), "box", at(0, 0, 0.5));
+  w.spawn(load_urdf_string(box(ray_sensor()), "box"), "box", translated(0, 0, 0.5));
   w.step(100);
   EXPECT_EQ(probe("front/ranges"), 3);
   EXPECT_NEAR(probe("front/range1"), 1.75, 1e-5);
@@ -122,21 +108,21 @@ TEST_F(GazeboSensors, RaySensorPluginReadsTheRangesToAWall) {
 // The plug-in's <plugin> element sits in its <sensor name>, as in Gazebo.
 TEST_F(GazeboSensors, ASensorPluginsSdfParentIsItsSensor) {
   World w(wall_world());
-  w.spawn(load_urdf_string(box(ray_sensor()), "box"), "box", at(0, 0, 0.5));
+  w.spawn(load_urdf_string(box(ray_sensor()), "box"), "box", translated(0, 0, 0.5));
   EXPECT_EQ(probe("front/sdf_parent_is_my_sensor"), 1);
 }
 
 // <gazebo/gazebo.hh> gives Gazebo's version macros, 11 (what a plug-in's `#if GAZEBO_MAJOR_VERSION >= 9` reads).
 TEST_F(GazeboSensors, APluginSeesGazebosMajorVersion11) {
   World w(wall_world());
-  w.spawn(load_urdf_string(box(ray_sensor()), "box"), "box", at(0, 0, 0.5));
+  w.spawn(load_urdf_string(box(ray_sensor()), "box"), "box", translated(0, 0, 0.5));
   EXPECT_EQ(probe("front/gazebo_major"), 11);
 }
 
 // The <ray> as written: 3 samples over [-0.1, 0.1]: a resolution of 0.2 / 2 = 0.1 rad; range max 10 m.
 TEST_F(GazeboSensors, RaySensorGivesItsScanAsWritten) {
   World w(wall_world());
-  w.spawn(load_urdf_string(box(ray_sensor()), "box"), "box", at(0, 0, 0.5));
+  w.spawn(load_urdf_string(box(ray_sensor()), "box"), "box", translated(0, 0, 0.5));
   w.step(100);
   EXPECT_EQ(probe("front/range_count"), 3);
   EXPECT_NEAR(probe("front/angle_min"), -0.1, 1e-12);
@@ -148,7 +134,7 @@ TEST_F(GazeboSensors, RaySensorGivesItsScanAsWritten) {
 // the last at 1.0 s.
 TEST_F(GazeboSensors, ASensorUpdatesOnItsUpdateRate) {
   World w(wall_world());
-  w.spawn(load_urdf_string(box(ray_sensor()), "box"), "box", at(0, 0, 0.5));
+  w.spawn(load_urdf_string(box(ray_sensor()), "box"), "box", translated(0, 0, 0.5));
   w.step(1000);
   EXPECT_EQ(probe("front/updates"), 10);
   EXPECT_DOUBLE_EQ(probe("front/time"), 1.0);
@@ -157,7 +143,7 @@ TEST_F(GazeboSensors, ASensorUpdatesOnItsUpdateRate) {
 // Not <always_on> and never SetActive(true): Gazebo's sensor does not measure, and neither does car's kind for it.
 TEST_F(GazeboSensors, AnInactiveSensorDoesNotMeasure) {
   World w(wall_world());
-  w.spawn(load_urdf_string(box(ray_sensor("front", "<inactive/>")), "box"), "box", at(0, 0, 0.5));
+  w.spawn(load_urdf_string(box(ray_sensor("front", "<inactive/>")), "box"), "box", translated(0, 0, 0.5));
   w.step(1000);
   EXPECT_EQ(probe("front/loaded"), 1);
   EXPECT_TRUE(std::isnan(probe("front/updates")));
@@ -168,7 +154,7 @@ TEST_F(GazeboSensors, AlwaysOnMakesASensorActive) {
   World w(wall_world());
   const std::string s = ray_sensor("front", "<inactive/>");
   const std::string on = "<sensor type=\"ray\" name=\"front\"><always_on>true</always_on>" + s.substr(s.find('>') + 1);
-  w.spawn(load_urdf_string(box(on), "box"), "box", at(0, 0, 0.5));
+  w.spawn(load_urdf_string(box(on), "box"), "box", translated(0, 0, 0.5));
   w.step(100);
   EXPECT_EQ(probe("front/updates"), 1);
 }
@@ -180,11 +166,11 @@ TEST_F(GazeboSensors, RaySensorHasTheNoiseOfCarsLaser) {
   WorldOptions o;
   o.seed = 7;
   World w(wall_world(), o);
-  w.spawn(load_urdf_string(box(ray_sensor("front", "", noise)), "box"), "box", at(0, 0, 0.5));
+  w.spawn(load_urdf_string(box(ray_sensor("front", "", noise)), "box"), "box", translated(0, 0, 0.5));
   w.step(100);
   World own(wall_world(), o);
   own.spawn(load_urdf_string(box(ray_sensor("front", "", noise, "libgazebo_ros_laser.so")), "box"), "box",
-            at(0, 0, 0.5));
+            translated(0, 0, 0.5));
   own.set_sensor_active("box", "probe", true);
   own.step(100);
   const OutputQueue outs = own.take_outputs();
@@ -203,7 +189,7 @@ TEST_F(GazeboSensors, ContactSensorReportsABoxRestingOnTheGround) {
   const std::string bump = R"(<sensor type="contact" name="bump"><update_rate>100</update_rate>
       <contact><collision>base_collision</collision></contact>
       <plugin name="probe" filename="libsensor_probe.so"/></sensor>)";
-  w.spawn(load_urdf_string(box(bump), "box"), "box", at(0, 0, 0.1));
+  w.spawn(load_urdf_string(box(bump), "box"), "box", translated(0, 0, 0.1));
   w.step(1000);
   EXPECT_EQ(probe("bump/contacts"), 1);
   EXPECT_GE(probe("bump/points"), 1);
@@ -233,7 +219,7 @@ TEST_F(GazeboSensors, ContactSensorFindsANamedLumpedCollision) {
       <contact><collision>base_fixed_joint_lump__shell_collision</collision></contact>
       <plugin name="probe" filename="libsensor_probe.so"/></sensor></gazebo>
 </robot>)";
-  w.spawn(load_urdf_string(urdf, "box"), "box", at(0, 0, 0.1));
+  w.spawn(load_urdf_string(urdf, "box"), "box", translated(0, 0, 0.1));
   w.step(1000);
   EXPECT_EQ(probe("bump/contacts"), 1);
 }
@@ -245,7 +231,7 @@ TEST_F(GazeboSensors, ImuSensorAtRestReadsPlusGOnZ) {
   World w(empty_world());
   const std::string imu = R"(<sensor type="imu" name="imu"><update_rate>100</update_rate>
       <plugin name="probe" filename="libsensor_probe.so"/></sensor>)";
-  w.spawn(load_urdf_string(box(imu), "box"), "box", at(0, 0, 0.1));
+  w.spawn(load_urdf_string(box(imu), "box"), "box", translated(0, 0, 0.1));
   w.step(1000);
   EXPECT_EQ(probe("imu/updates"), 100);
   EXPECT_NEAR(probe("imu/acc_z"), 9.8, 1e-3);
@@ -262,7 +248,7 @@ TEST_F(GazeboSensors, CameraFrameHasItsSizeAndTheBackground) {
       <camera><horizontal_fov>1.0</horizontal_fov><image><width>8</width><height>6</height><format>R8G8B8</format></image>
         <clip><near>0.1</near><far>100</far></clip></camera>
       <plugin name="probe" filename="libsensor_probe.so"/></sensor>)";
-  w.spawn(load_urdf_string(box(cam), "box"), "box", at(0, 0, 0.5));
+  w.spawn(load_urdf_string(box(cam), "box"), "box", translated(0, 0, 0.5));
   w.step(100);
   EXPECT_EQ(probe("cam/width"), 8);
   EXPECT_EQ(probe("cam/height"), 6);
@@ -281,7 +267,7 @@ TEST_F(GazeboSensors, DepthCameraGivesTheDepthOfTheWall) {
       <camera><horizontal_fov>1.0</horizontal_fov><image><width>9</width><height>7</height></image>
         <clip><near>0.1</near><far>100</far></clip></camera>
       <plugin name="probe" filename="libsensor_probe.so"/></sensor>)";
-  w.spawn(load_urdf_string(box(cam), "box"), "box", at(0, 0, 0.5));
+  w.spawn(load_urdf_string(box(cam), "box"), "box", translated(0, 0, 0.5));
   w.step(100);
   EXPECT_NEAR(probe("depth/centre_depth"), 1.9, 1e-5);
 }
@@ -298,7 +284,7 @@ TEST_F(GazeboSensors, ModelPluginFindsSensorsThroughSensorManager) {
   const std::string finder = R"(<plugin name="finder" filename="libsensor_finder.so">
       <sensor_name>cliff</sensor_name><sensor_name>lab::box::base::cliff</sensor_name><sensor_name>nose</sensor_name>
       </plugin>)";
-  w.spawn(load_urdf_string(box(cliff, finder), "box"), "box", at(0, 0, 0.5));
+  w.spawn(load_urdf_string(box(cliff, finder), "box"), "box", translated(0, 0, 0.5));
   void* h = dlopen((kDir + "/libsensor_finder.so").c_str(), RTLD_LAZY | RTLD_NOLOAD);
   ASSERT_NE(h, nullptr);
   auto log = reinterpret_cast<const char* (*)()>(dlsym(h, "car_test_finder_log"));
@@ -317,7 +303,7 @@ TEST_F(GazeboSensors, ModelPluginFindsSensorsThroughSensorManager) {
 TEST_F(GazeboSensors, ASensorTypeNotOfferedLeavesItsPluginOut) {
   World w(wall_world());
   const std::string gps = R"(<sensor type="gps" name="fix"><plugin name="probe" filename="libsensor_probe.so"/></sensor>)";
-  w.spawn(load_urdf_string(box(gps), "box"), "box", at(0, 0, 0.5));
+  w.spawn(load_urdf_string(box(gps), "box"), "box", translated(0, 0, 0.5));
   EXPECT_EQ(diags(w, "plugin-not-loaded"),
             std::vector<std::string>{"sensor[fix]/plugin[probe]: sensor type 'gps' is not offered by car's Gazebo "
                                      "sensors API (ray, gpu_ray, contact, imu, camera, depth); the plug-in "
@@ -329,7 +315,7 @@ TEST_F(GazeboSensors, ASensorTypeNotOfferedLeavesItsPluginOut) {
 // the model goes on.
 TEST_F(GazeboSensors, AModelPluginInASensorIsAnError) {
   World w(wall_world());
-  w.spawn(load_urdf_string(box(ray_sensor("front", "", "", "libmodel_push.so")), "box"), "box", at(0, 0, 0.5));
+  w.spawn(load_urdf_string(box(ray_sensor("front", "", "", "libmodel_push.so")), "box"), "box", translated(0, 0, 0.5));
   EXPECT_EQ(diags(w, "plugin-not-loaded"),
             std::vector<std::string>{"sensor[front]/plugin[probe]: plug-in 'probe' of model 'box' failed to load: "
                                      "Sensor[front] is attempting to load a plugin, but detected an incorrect plugin "
@@ -343,10 +329,10 @@ TEST_F(GazeboSensors, AModelPluginInASensorIsAnError) {
 TEST_F(GazeboSensors, ASensorGoesWithItsModel) {
   World w(wall_world());
   const std::string finder = R"(<plugin name="finder" filename="libsensor_finder.so"><sensor_name>front</sensor_name></plugin>)";
-  w.spawn(load_urdf_string(box(ray_sensor(), finder), "box"), "box", at(0, 0, 0.5));
+  w.spawn(load_urdf_string(box(ray_sensor(), finder), "box"), "box", translated(0, 0, 0.5));
   w.remove("box");
   World again(wall_world());
-  again.spawn(load_urdf_string(box("", finder), "box"), "box", at(0, 0, 0.5));
+  again.spawn(load_urdf_string(box("", finder), "box"), "box", translated(0, 0, 0.5));
   void* h = dlopen((kDir + "/libsensor_finder.so").c_str(), RTLD_LAZY | RTLD_NOLOAD);
   ASSERT_NE(h, nullptr);
   EXPECT_EQ(std::string(reinterpret_cast<const char* (*)()>(dlsym(h, "car_test_finder_log"))()), "model=box front=none ");

@@ -7,13 +7,13 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
-#include <optional>
 #include <string>
 #include <thread>
 #include <utility>
 
 #include "car_sim/shared_plugin.hpp"
 #include "car_sim/world.hpp"
+#include "test_util.hpp"
 
 using namespace car_sim;
 
@@ -25,25 +25,9 @@ const std::string kModels = std::string(CAR_SOURCE_DIR) + "/test/data/factory_mo
 // The search paths set to the test plug-ins' folder and the factory's models alone for one test, put back after.
 class WorldPlugins : public ::testing::Test {
  protected:
-  void SetUp() override {
-    for (const char* v : {"GAZEBO_PLUGIN_PATH", "CMAKE_PREFIX_PATH", "LD_LIBRARY_PATH", "GAZEBO_MODEL_PATH"}) {
-      const char* old = std::getenv(v);
-      saved_.emplace_back(v, old ? std::optional<std::string>(old) : std::nullopt);
-    }
-    setenv("GAZEBO_PLUGIN_PATH", kDir.c_str(), 1);
-    setenv("CMAKE_PREFIX_PATH", "/nowhere/a", 1);
-    setenv("LD_LIBRARY_PATH", "/nowhere/b", 1);
-    setenv("GAZEBO_MODEL_PATH", kModels.c_str(), 1);
-    world_log();
-  }
-  void TearDown() override {
-    for (const auto& [v, old] : saved_) {
-      if (old)
-        setenv(v.c_str(), old->c_str(), 1);
-      else
-        unsetenv(v.c_str());
-    }
-  }
+  ScopedEnv env_{{"GAZEBO_PLUGIN_PATH", kDir}, {"CMAKE_PREFIX_PATH", "/nowhere/a"}, {"LD_LIBRARY_PATH", "/nowhere/b"},
+                 {"GAZEBO_MODEL_PATH", kModels}};
+  void SetUp() override { world_log(); }
   // The world_events plug-in's log (test/gazebo/plugins/world_events.cc), read from the loaded library and cleared.
   static std::string world_log() {
     void* h = dlopen((kDir + "/libworld_events.so").c_str(), RTLD_LAZY | RTLD_NOLOAD);
@@ -68,7 +52,6 @@ class WorldPlugins : public ::testing::Test {
     dlclose(h);
     return out;
   }
-  std::vector<std::pair<std::string, std::optional<std::string>>> saved_;
 };
 
 // How many times a log has `what` ("timereset@0 reset@0" has one "timereset").

@@ -83,12 +83,9 @@ TEST(SensorLimits, AnIncludedModelsCameraIsRefusedNamingItsFile) {
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "model.config") << "<model><name>bigcam</name><sdf version='1.6'>model.sdf</sdf></model>";
   std::ofstream(dir / "model.sdf") << sdf_model_with(kCamera);
-  const char* old = std::getenv("GAZEBO_MODEL_PATH");
-  const std::string kept = old ? old : "";
-  setenv("GAZEBO_MODEL_PATH", dir.parent_path().c_str(), 1);
+  ScopedEnv env{{"GAZEBO_MODEL_PATH", dir.parent_path().string()}};
   const std::string world = "<sdf version='1.6'><world name='w'><include><uri>model://bigcam</uri></include></world></sdf>";
   const std::string e = error_of([&] { load_world_string(world, "w.world"); });
-  if (old) setenv("GAZEBO_MODEL_PATH", kept.c_str(), 1); else unsetenv("GAZEBO_MODEL_PATH");
   EXPECT_EQ(e, (dir / "model.sdf").string() + ":1: " + kCameraReason);
 }
 

@@ -170,9 +170,8 @@ TEST(Validate, JointOriginBeyondTheFloatLimitIsRefused) {
 }
 
 TEST(Validate, IncludeLoopIsRefusedBeforeSdformatRecursesForever) {
-  setenv("GAZEBO_MODEL_PATH", data_path("bad/models").c_str(), 1);
+  ScopedEnv env{{"GAZEBO_MODEL_PATH", data_path("bad/models")}};
   const std::string e = world_error("include_loop.world");
-  unsetenv("GAZEBO_MODEL_PATH");
   EXPECT_NE(e.find("include loop: "), std::string::npos) << e;
   EXPECT_NE(e.find("loop_a/model.sdf -> "), std::string::npos) << e;
 }

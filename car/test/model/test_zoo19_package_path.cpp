@@ -18,23 +18,11 @@ namespace {
 // Sets ROS_PACKAGE_PATH for one test and puts the old value back.
 class PackagePath : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const char* old = std::getenv("ROS_PACKAGE_PATH");
-    had_ = old != nullptr;
-    if (had_) old_ = old;
-  }
-  void TearDown() override {
-    if (had_)
-      setenv("ROS_PACKAGE_PATH", old_.c_str(), 1);
-    else
-      unsetenv("ROS_PACKAGE_PATH");
-  }
-  static void use(const std::string& value) { setenv("ROS_PACKAGE_PATH", value.c_str(), 1); }
+  void use(const std::string& value) { env_.set("ROS_PACKAGE_PATH", value); }
   static std::string ws() { return data_path("zoo19/ws"); }
 
  private:
-  bool had_ = false;
-  std::string old_;
+  ScopedEnv env_;
 };
 
 }  // namespace

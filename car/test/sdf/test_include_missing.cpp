@@ -27,8 +27,7 @@ const Diagnostic* include_warning(const std::vector<Diagnostic>& ds) {
 
 // GAZEBO_MODEL_PATH set to one folder that holds nothing, for the messages' model path
 struct EmptyModelPath {
-  EmptyModelPath() { setenv("GAZEBO_MODEL_PATH", "/nonexistent/models", 1); }
-  ~EmptyModelPath() { unsetenv("GAZEBO_MODEL_PATH"); }
+  ScopedEnv env{{"GAZEBO_MODEL_PATH", "/nonexistent/models"}};
 };
 
 std::string write_temp(const std::string& name, const std::string& text) {

@@ -347,13 +347,12 @@ TEST(SdfNamespace, ExplicitIsKept) {
 
 // Rule 13: -database's wrapper includes model://NAME through GAZEBO_MODEL_PATH; a missing one names the folders.
 TEST(SdfModel, DatabaseIncludeResolvesThroughGazeboModelPath) {
-  setenv("GAZEBO_MODEL_PATH", data_path("sdf/models").c_str(), 1);
+  ScopedEnv env{{"GAZEBO_MODEL_PATH", data_path("sdf/models")}};
   const SdfRobot r = load_sdf_model_string(
       "<sdf version='1.4'><world name='default'><include><uri>model://sdf_box_bot</uri></include></world></sdf>");
   EXPECT_EQ(r.model.name, "sdf_box_bot");
   // model.config's <sdf> names model.sdf; its link 'chassis' has no <inertial>: 1 kg
   EXPECT_DOUBLE_EQ(r.model.find_link("chassis")->inertial->mass, 1.0);
-  unsetenv("GAZEBO_MODEL_PATH");
 }
 
 // A link's <gravity>false</gravity> holds also when one of its collisions has a <surface> (the surface used to

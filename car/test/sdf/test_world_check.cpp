@@ -132,9 +132,8 @@ TEST(WorldCheck, TheLoadersRefusalIsAWorldLoadError) {
 }
 
 TEST(WorldCheck, AnIncludeThatResolvesNowhereIsAWarningAndTheRestLoads) {
-  setenv("GAZEBO_MODEL_PATH", "/nonexistent/models", 1);
+  ScopedEnv env{{"GAZEBO_MODEL_PATH", "/nonexistent/models"}};
   const WorldCheck c = check_bad("missing_model.world");
-  unsetenv("GAZEBO_MODEL_PATH");
   const Diagnostic f = only_finding(c);
   EXPECT_EQ(f.severity, Severity::Warning);
   EXPECT_EQ(f.code, "include-missing");

@@ -1,76 +1,29 @@
 // A model included inside a model (docs/COMPAT-sdf.md 16a): flattened into its parent as Gazebo 11's sdformat 9 does
 // (addNestedModel, sdf9 src/parser.cc): one model whose links and joints are named `INCLUDED::name`, poses composed,
-// the included model's plug-in text renamed; a plug-in car leaves out is never silent. Our own model files, written
-// to a temporary model folder (GAZEBO_MODEL_PATH) by each test.
+// the included model's plug-in text renamed; a plug-in car leaves out is never silent. The included model is
+// test/data/nested_models/spinner.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
 #include "car_sim/description.hpp"
 #include "car_sim/sdf_model.hpp"
 #include "car_sim/world.hpp"
+#include "test_util.hpp"
 
 using namespace car_sim;
 
 namespace {
 
-// spinner: base (2 kg) 0.1 m above the model frame, rotor (1 kg) 0.3 m above it on the continuous joint axle (about
-// z; SDF's "no limit" -1e16..1e16, rule 5), each with Izz 0.5 kg m^2 on the z axis. rotor has a 1 Hz imu sensor.
-const char* kSpinner = R"(<?xml version="1.0"?>
-<sdf version="1.6">
-  <model name="spinner">
-    <link name="base">
-      <pose>0 0 0.1 0 0 0</pose>
-      <inertial><mass>2</mass><inertia><ixx>0.5</ixx><iyy>0.5</iyy><izz>0.5</izz></inertia></inertial>
-      <collision name="c"><geometry><box><size>0.2 0.2 0.2</size></box></geometry></collision>
-    </link>
-    <link name="rotor">
-      <pose>0 0 0.3 0 0 0</pose>
-      <inertial><mass>1</mass><inertia><ixx>0.5</ixx><iyy>0.5</iyy><izz>0.5</izz></inertia></inertial>
-      <collision name="c"><geometry><cylinder><radius>0.1</radius><length>0.05</length></cylinder></geometry></collision>
-      <sensor name="imu" type="imu"><update_rate>1</update_rate></sensor>
-    </link>
-    <joint name="axle" type="revolute">
-      <parent>base</parent>
-      <child>rotor</child>
-      <axis><xyz>0 0 1</xyz><limit><lower>-1e16</lower><upper>1e16</upper></limit></axis>
-    </joint>
-    <plugin name="states" filename="libgazebo_ros_joint_state_publisher.so">
-      <jointName>axle</jointName>
-      <updateRate>10</updateRate>
-    </plugin>
-  </model>
-</sdf>)";
-
-// GAZEBO_MODEL_PATH set to a fresh folder holding spinner (model.config names model.sdf), put back after.
+// GAZEBO_MODEL_PATH set to test/data/nested_models alone for one test, put back after. Its one model, spinner
+// (model.config says what it is): base (2 kg) 0.1 m above the model frame, rotor (1 kg) 0.3 m above it on the
+// continuous joint axle (about z), Izz 0.5 kg m^2 each; rotor has a 1 Hz imu sensor, the model a joint_state_publisher.
 class NestedInclude : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() / ("car_nested_include_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir_ / "spinner");
-    std::ofstream(dir_ / "spinner" / "model.config")
-        << "<?xml version=\"1.0\"?><model><name>spinner</name><sdf version=\"1.6\">model.sdf</sdf></model>";
-    std::ofstream(dir_ / "spinner" / "model.sdf") << kSpinner;
-    const char* old = std::getenv("GAZEBO_MODEL_PATH");
-    if (old) old_ = old;
-    had_ = old != nullptr;
-    setenv("GAZEBO_MODEL_PATH", dir_.c_str(), 1);
-  }
-  void TearDown() override {
-    if (had_)
-      setenv("GAZEBO_MODEL_PATH", old_.c_str(), 1);
-    else
-      unsetenv("GAZEBO_MODEL_PATH");
-    std::filesystem::remove_all(dir_);
-  }
-  std::filesystem::path dir_;
-  std::string old_;
-  bool had_ = false;
+  ScopedEnv env_{{"GAZEBO_MODEL_PATH", data_path("nested_models")}};
 };
 
 // holder at (1, 2, 0) turned 90 deg about z, with spinner included 0.5 m along its x, and what else `more` adds.
