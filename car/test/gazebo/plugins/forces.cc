@@ -4,8 +4,9 @@
 #include <gazebo/gazebo.hh>
 #include <gazebo/physics/physics.hh>
 
-#include <sstream>
 #include <string>
+
+#include "event_log.hh"
 
 namespace {
 std::string g_log;
@@ -36,10 +37,8 @@ class Forces : public ModelPlugin {
  private:
   // what happened, at the world's sim time (and the event's, when it carries one)
   void Log(const std::string& what, const common::Time& event = common::Time(-1, 0)) {
-    std::ostringstream os;
-    os << what << "@" << this->model->GetWorld()->SimTime().Double();
-    if (event.sec >= 0) os << "/" << event.Double();
-    g_log += (g_log.empty() ? "" : " ") + os.str();
+    const double event_time = event.sec >= 0 ? event.Double() : -1.0;
+    car_test::log_event(g_log, what, this->model->GetWorld()->SimTime().Double(), event_time);
   }
   physics::ModelPtr model;
   physics::LinkPtr link;

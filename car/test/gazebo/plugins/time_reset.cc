@@ -6,9 +6,10 @@
 #include <gazebo/gazebo.hh>
 #include <gazebo/physics/physics.hh>
 
-#include <sstream>
 #include <string>
 #include <thread>
+
+#include "event_log.hh"
 
 namespace {
 std::string g_log;
@@ -43,11 +44,7 @@ class TimeReset : public WorldPlugin {
   void Reset() override { Log("reset"); }
 
  private:
-  void Log(const std::string& what) {
-    std::ostringstream os;
-    os << what << "@" << this->world->SimTime().Double();
-    g_log += (g_log.empty() ? "" : " ") + os.str();
-  }
+  void Log(const std::string& what) { car_test::log_event(g_log, what, this->world->SimTime().Double()); }
   physics::WorldPtr world;
   std::thread::id thread;
   bool done = false;

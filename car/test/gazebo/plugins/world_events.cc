@@ -5,8 +5,9 @@
 #include <gazebo/gazebo.hh>
 #include <gazebo/physics/physics.hh>
 
-#include <sstream>
 #include <string>
+
+#include "event_log.hh"
 
 namespace {
 std::string g_log;
@@ -41,11 +42,7 @@ class WorldEvents : public WorldPlugin {
   void Reset() override { Log("reset"); }
 
  private:
-  void Log(const std::string& what) {
-    std::ostringstream os;
-    os << what << "@" << this->world->SimTime().Double();
-    g_log += (g_log.empty() ? "" : " ") + os.str();
-  }
+  void Log(const std::string& what) { car_test::log_event(g_log, what, this->world->SimTime().Double()); }
   physics::WorldPtr world;
   std::string action;
   bool done = false;
