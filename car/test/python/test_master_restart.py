@@ -6,7 +6,6 @@ client registered with the old master would be as lost as the node. Each wait is
 wall-clock bounds that only stop a broken run from hanging."""
 import os
 import signal
-import socket
 import subprocess
 import time
 
@@ -15,17 +14,11 @@ import yaml
 
 import rosgraph
 import roslib.packages as roslib_packages
-from car.testing.sim import shutdown_signal
+from car.testing.sim import free_port, shutdown_signal
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
 WORLD = os.path.join(ROOT, 'worlds', 'box_house.world')
 BOUND = 120.0  # [s] wall, per condition: a bound against hanging, not a speed requirement
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(('localhost', 0))
-        return s.getsockname()[1]
 
 
 def wait_for(what, condition, bound=BOUND):

@@ -2,21 +2,14 @@
 reason, ~lockstep_timeout NaN or inf falls back to 5 s with a warning. Each sim_node runs against its own rosmaster
 on a free port. Needs the workspace (sim_node) sourced."""
 import os
-import socket
 import subprocess
 import time
 
 import pytest
 import roslib.packages as roslib_packages
-from car.testing.sim import _master_up, shutdown_signal
+from car.testing.sim import free_port, master_up, shutdown_signal
 
 BOUND = 120.0  # [s] wall: a bound against hanging, not a speed requirement
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(('localhost', 0))
-        return s.getsockname()[1]
 
 
 @pytest.fixture
@@ -30,7 +23,7 @@ def master(tmp_path):
     # up before a node starts: world_markers, started at once, was refused a connection on a busy machine
     # (ConnectionRefusedError where the ~rate check was expected, clean-install proof of 2026-11-29)
     deadline = time.monotonic() + BOUND
-    while not _master_up(env['ROS_MASTER_URI']):
+    while not master_up(env['ROS_MASTER_URI']):
         assert core.poll() is None, 'rosmaster on port %d exited (%s)' % (port, core.returncode)
         assert time.monotonic() < deadline, 'rosmaster on port %d did not answer within %.0f s' % (port, BOUND)
         time.sleep(0.05)

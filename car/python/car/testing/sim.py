@@ -35,7 +35,8 @@ def free_port():
         return s.getsockname()[1]
 
 
-def _master_up(uri):
+def master_up(uri):
+    """True when a ROS master answers at uri (its getPid call returns)."""
     import rosgraph
     try:
         rosgraph.Master('/car_testing_probe', master_uri=uri).getPid()
@@ -52,7 +53,7 @@ def ensure_master(use_existing=False, hang_s=60.0):
         return _master['uri']
     if use_existing:
         uri = os.environ.get('ROS_MASTER_URI')
-        if not uri or not _master_up(uri):
+        if not uri or not master_up(uri):
             raise RuntimeError('car.testing: --car-use-master: no master answers at ROS_MASTER_URI=%r' % uri)
         _master.update(uri=uri, owned=False)
         return uri
@@ -62,9 +63,9 @@ def ensure_master(use_existing=False, hang_s=60.0):
         proc = subprocess.Popen(['rosmaster', '--core', '-p', str(port)], stdout=subprocess.DEVNULL,
                                 stderr=subprocess.DEVNULL, start_new_session=True)
         deadline = time.monotonic() + hang_s
-        while time.monotonic() < deadline and proc.poll() is None and not _master_up(uri):
+        while time.monotonic() < deadline and proc.poll() is None and not master_up(uri):
             time.sleep(0.05)
-        if proc.poll() is None and _master_up(uri):
+        if proc.poll() is None and master_up(uri):
             _master.update(uri=uri, proc=proc, owned=True)
             os.environ['ROS_MASTER_URI'] = uri
             atexit.register(shutdown_master)
