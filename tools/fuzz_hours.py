@@ -17,12 +17,14 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.realpath(__file__)))
 
-# target -> the sources that parse and validate its input (paths from the repository's root)
+# target -> the sources that parse, validate and resolve its input (paths from the repository's root). The plug-in
+# kinds read their parameters in their own files (src/plugins/KIND/), beside their stepping, so every target whose
+# input carries plug-ins counts the whole of src/plugins.
 LOADERS = {
-    'urdf': ['car/src/model'],
-    'sdf_world': ['car/src/model', 'car/src/description'],
-    'sdf_model': ['car/src/model', 'car/src/description'],
-    'spawn': ['car/src/model', 'car/src/description'],
+    'urdf': ['car/src/model', 'car/src/plugins'],
+    'sdf_world': ['car/src/model', 'car/src/description', 'car/src/plugins'],
+    'sdf_model': ['car/src/model', 'car/src/description', 'car/src/plugins'],
+    'spawn': ['car/src/model', 'car/src/description', 'car/src/plugins'],
     'flatten': ['car/src/model', 'car/src/description'],
     'ros_control': ['car/src/plugins/ros_control'],
 }

@@ -1,6 +1,6 @@
 """tools/fuzz_hours.py: a fuzzing run counts for a target only while that target's loader sources are as they were
 at the run's commit; -dirty and unknown commits never count. A throw-away git repository with three commits: A, B
-(changes car/src/model, every target's loader but ros_control's), C (changes docs only)."""
+(changes car/src/model, a loader source of every target but ros_control), C (changes docs only)."""
 import os
 import subprocess
 import sys
@@ -53,7 +53,7 @@ def line(out, target):
 def test_a_run_before_its_loader_changed_does_not_count(repo):
     r, ids = repo
     out = run(r, [('urdf', ids['A'], 900), ('urdf', ids['B'], 1000), ('urdf', ids['C'], 200)]).stdout
-    assert line(out, 'urdf') == '| urdf | car/src/model | 2 | 1200 | 16.7 % |'
+    assert line(out, 'urdf') == '| urdf | car/src/model, car/src/plugins | 2 | 1200 | 16.7 % |'
     assert 'not counted: urdf 2026-11-29T00:00:00Z 900 CPU s: the loader changed since %s' % ids['A'] in out
 
 
@@ -66,7 +66,7 @@ def test_a_change_to_another_targets_loader_keeps_the_count(repo):
 def test_dirty_and_unknown_commits_never_count(repo):
     r, ids = repo
     out = run(r, [('spawn', ids['C'] + '-dirty', 500), ('spawn', '0123456789ab', 600)]).stdout
-    assert line(out, 'spawn') == '| spawn | car/src/model, car/src/description | 0 | 0 | 0.0 % |'
+    assert line(out, 'spawn') == '| spawn | car/src/model, car/src/description, car/src/plugins | 0 | 0 | 0.0 % |'
     assert ('not counted: spawn 2026-11-29T00:00:00Z 500 CPU s: built from a work tree that differed from its '
             'commit') in out
     assert 'not counted: spawn 2026-11-29T00:00:01Z 600 CPU s: commit 0123456789ab unknown to git' in out
