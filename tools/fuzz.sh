@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Fuzzes car's loaders with libFuzzer (issue 28, docs/RELIABILITY.md): builds test/fuzz/fuzz_*.cpp with clang in
 # .ws-asan/ (tools/sanitize.sh's ASan+UBSan build; -DCAR_FUZZ=ON adds libFuzzer's coverage hooks), seeds each target from test/data/ and
-# runs them one after the other on one core (nice 10; FUZZ_NICE=19 to take only idle CPU).
+# runs them one after the other on one core (nice 10; FUZZ_NICE=19 to take only idle CPU; FUZZ_FORK=N runs N
+# children of libFuzzer's -fork at once, N cores, for one target; the CPU seconds are those of all N).
 # Each fuzzing run appends its summary (target, commit, CPU s, inputs, cov/ft, corpus, findings) to
 # test/fuzz/runs.tsv (committed; FUZZ_RUNS=FILE elsewhere; --smoke writes test/fuzz/out/runs.tsv, git-ignored).
 # Usage: tools/fuzz.sh [--smoke] [--cov] [SECONDS] [TARGET...]
@@ -45,6 +46,8 @@ JOBS="${JOBS:-1}"
 # that a process gets a third of a core (each timeout is re-measured in CPU time below either way)
 TIMEOUT="${FUZZ_TIMEOUT:-1}"
 NICE="${FUZZ_NICE:-10}"
+# libFuzzer's -fork jobs: children fuzzing the one target at once, sharing its corpus
+FORK="${FUZZ_FORK:-1}"
 # the table of runs: one row per target and run (test/fuzz/RUNS.md explains the columns)
 if [ "$secs" -eq 60 ] && [ -z "${FUZZ_RUNS:-}" ]; then RUNS="$ROOT/car/test/fuzz/out/runs.tsv"; else RUNS="${FUZZ_RUNS:-$ROOT/car/test/fuzz/runs.tsv}"; fi
 RUNS_HEADER="start_utc\ttarget\tcommit\tnice\twall_s\tcpu_s\tinputs\tcov\tft\tcorpus_files\tfindings\tnote"
@@ -206,7 +209,7 @@ for t in "${targets[@]}"; do
   cpu=$( { time {
       LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=1 \
       UBSAN_OPTIONS=print_stacktrace=1 nice -n "$NICE" "$BIN/fuzz_$t" -timeout="$TIMEOUT" -rss_limit_mb=2048 -max_len=65536 \
-      -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
+      -fork="$FORK" -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
       -max_total_time="$secs" -artifact_prefix="$out/" "${dict[@]}" "$corpus" "$seed" \
       > "$log" 2>&1 &
       fuzzer=$!
@@ -230,6 +233,7 @@ for t in "${targets[@]}"; do
   [ "$found" -eq 0 ] || { broken=1; grep -m3 -A12 'ERROR\|RULE BROKEN\|ALARM' "$log"; }
   echo "fuzz: $t: ${cpu} CPU s, ${execs:-?} inputs, $found finding(s) in $out"
   note="timeout ${TIMEOUT} s"
+  [ "$FORK" -eq 1 ] || note+="; fork ${FORK}"
   stuck=$(grep -c killed "$WS/watchdog-$t.log" 2>/dev/null); [ "${stuck:-0}" -eq 0 ] || note+="; ${stuck} hung child(ren) killed by the watchdog"
   [ -d "$out/load" ] && note+="; $(find "$out/load" -type f | wc -l) wall-clock timeout(s) re-measured as load"
   record_run "$t" "$start" "$wall" "$cpu" "$execs" "$log" "$corpus" "$found" "$note"
