@@ -105,6 +105,7 @@ HEADERS = {
     'urdf_model/': ('liburdfdom-headers-dev', 'liburdfdom-headers-dev'),
     'console_bridge/': ('libconsole-bridge-dev', 'libconsole-bridge-dev'),
     'tinyxml2.h': ('tinyxml2', 'libtinyxml2-dev'),
+    'tinyxml.h': ('tinyxml', 'libtinyxml-dev'),
     'Eigen/': ('eigen', 'libeigen3-dev'),
     'pybind11/': ('pybind11-dev', 'pybind11-dev'),
     'sdf/': ('libsdformat-dev', 'libsdformat-dev'),

@@ -22,14 +22,15 @@ RUN = {
     'joint_state_publisher': 'joint-state-publisher', 'python3-yaml': 'python3-yaml',
     'python3-numpy': 'python3-numpy', 'python3-tqdm': 'python3-tqdm',
     # libraries: dpkg-shlibdeps names the run-time package of each
-    'liburdfdom-dev': '', 'liburdfdom-headers-dev': '', 'libconsole-bridge-dev': '', 'tinyxml2': '', 'libsdformat-dev': '',
+    'liburdfdom-dev': '', 'liburdfdom-headers-dev': '', 'libconsole-bridge-dev': '', 'tinyxml2': '', 'tinyxml': '', 'libsdformat-dev': '',
     'libbullet-dev': '', 'libembree-dev': '', 'libassimp-dev': '', 'topic_tools': '', 'libignition-math-dev': '',
     'boost': '',
     # this repository's own packages
     'car': 'ros-car', 'gazebo_msgs': 'ros-car-gazebo-msgs', 'controller_manager_msgs': 'ros-car-controller-manager-msgs',
     'control_msgs': 'ros-car-control-msgs', 'gazebo_ros': 'ros-car-gazebo-ros', 'gazebo': 'ros-car-gazebo',
     'xacro': 'ros-car-xacro', 'controller_manager': 'ros-car-controller-manager', 'gazebo_dev': 'ros-car-gazebo-dev',
-    'gazebo_plugins': 'ros-car-gazebo-plugins', 'gazebo_ros_control': 'ros-car-gazebo-ros-control',
+    'gazebo_plugins': 'ros-car-gazebo-plugins', 'control_toolbox': 'ros-car-control-toolbox',
+    'gazebo_ros_control': 'ros-car-gazebo-ros-control',
 }
 # What a user expects beside the simulator, not needed to run it: rviz (a display); matplotlib draws the plots of
 # world_tool plot and of a failed car.testing test (it pulls a compiler in through pythran: a Recommends keeps it

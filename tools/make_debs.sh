@@ -11,6 +11,7 @@
 #                                   catkin components for users' own Gazebo plug-ins (docs/PLUGINS.md)
 #   ros-car-gazebo-msgs, ros-car-controller-manager-msgs, ros-car-control-msgs
 #                                   the message packages Debian lacks
+#   ros-car-control-toolbox         control_toolbox::Pid for users' plug-ins and controllers
 # Depends: the Debian packages each one needs: dpkg-shlibdeps for its ELF files, its package.xml's run
 # dependencies through the table below, and the ros-car-* packages it needs.
 # Usage: tools/make_debs.sh [OUTDIR]      (default dist/; prints each .deb with its size)

@@ -21,7 +21,7 @@ DEB_PACKAGES=(
   python3-matplotlib python3-tqdm
   ros-core-dev ros-base-dev libroscpp-dev python3-rospy python3-roslaunch python3-rostest python3-rosgraph
   python3-rospkg python3-roslib python3-rosbag
-  liburdfdom-dev liburdfdom-headers-dev libconsole-bridge-dev libtinyxml2-dev libeigen3-dev pybind11-dev
+  liburdfdom-dev liburdfdom-headers-dev libconsole-bridge-dev libtinyxml2-dev libtinyxml-dev libeigen3-dev pybind11-dev
   libbullet-dev libsdformat-dev libembree-dev libassimp-dev libignition-math-dev libboost-dev
   libtf2-ros-dev python3-tf2-ros libsensor-msgs-dev python3-sensor-msgs libnav-msgs-dev python3-nav-msgs
   libgeometry-msgs-dev python3-geometry-msgs libstd-srvs-dev python3-std-srvs libros-rosgraph-msgs-dev python3-rosgraph-msgs

@@ -168,7 +168,7 @@ rc=$?
 [ ! -e "$WS/src/car/.ws" ] || rc=1
 record "setup_deps_only_builds_nothing" $rc $t0 "tools/setup.sh --deps-only (exit $rc, or it made .ws): $(tail -n 5 "$LOGS/deps_only.log")"
 found="$(cd "$WS/src" && /usr/bin/python3 -c 'from catkin_pkg.packages import find_packages; print(" ".join(sorted(p.name for p in find_packages(".").values())))')"
-want="car control_msgs controller_manager controller_manager_msgs gazebo gazebo_dev gazebo_msgs gazebo_plugins gazebo_ros gazebo_ros_control xacro"
+want="car control_msgs control_toolbox controller_manager controller_manager_msgs gazebo gazebo_dev gazebo_msgs gazebo_plugins gazebo_ros gazebo_ros_control xacro"
 [ "$found" = "$want" ]; record "clone_finds_every_package" $? $t0 "catkin_pkg found [$found] in the clone, expected [$want]"
 
 # ---- 2. catkin_make ---------------------------------------------------------------------------------------------
