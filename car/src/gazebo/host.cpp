@@ -6,6 +6,8 @@
 #include <sys/types.h>
 #include <unistd.h>
 
+#include <boost/make_shared.hpp>
+
 #include <chrono>
 #include <functional>
 #include <iostream>
@@ -126,6 +128,7 @@ void Hub::after_physics(uint64_t) {
   CurrentHub in(this);
   in_step = true;
   try {
+    if (core->physics_enabled()) islands.fire();
     end.fire();
   } catch (...) {
     in_step = false;
@@ -519,7 +522,7 @@ template <class List, class Fn>
 ConnectionPtr connect(car_gazebo::Hub& h, List car_gazebo::Hub::*list, Fn fn) {
   const int id = (h.*list).connect(std::move(fn));
   std::weak_ptr<car_gazebo::Hub> weak = h.shared_from_this();
-  return std::make_shared<Connection>([weak, list, id] {
+  return boost::make_shared<Connection>([weak, list, id] {
     if (auto hub = weak.lock()) ((*hub).*list).disconnect(id);
   });
 }

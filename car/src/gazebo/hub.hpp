@@ -108,6 +108,9 @@ class Hub : public std::enable_shared_from_this<Hub> {
   gazebo::physics::WorldPtr world;
   SlotList<const gazebo::common::UpdateInfo&> begin, before;
   SlotList<> end, stop, time_reset;
+  // car's own work of the physics step, after it and before WorldUpdateEnd, while physics is enabled (ODE's island
+  // rule for disabled links, Link::SetEnabled); plug-ins do not connect here, and disconnect_owner leaves it
+  SlotList<> islands;
   SlotList<bool> pause;
   // whether an update event is running (work that must not run inside a step is deferred)
   bool in_step = false;

@@ -2,6 +2,7 @@
 // wrench and relative pose, Model::SetLinkWorldPose and World::SetPhysicsEnabled, each one of car_sim::World's
 // public calls (docs/PLUGINS.md).
 #include <boost/any.hpp>
+#include <boost/make_shared.hpp>
 #include <stdexcept>
 
 #include "car_sim/world.hpp"
@@ -54,6 +55,9 @@ bool Joint::SetParam(const std::string& _key, unsigned int _index, const boost::
     gzerr << "Unable to handle joint attribute[" << _key << "] (car offers \"vel\", \"fmax\" and \"friction\")\n";
     return false;
   }
+  // as ODEJoint: both links enabled
+  if (LinkPtr c = GetChild()) c->SetEnabled(true);
+  if (LinkPtr p = GetParent()) p->SetEnabled(true);
   try {
     w.set_joint_motor(m->GetName(), name, motor);
   } catch (const std::invalid_argument& e) {
@@ -104,6 +108,45 @@ bool Link::GetGravityMode() const {
   ModelPtr m = model.lock();
   return core_of(m).link_gravity({m->GetName(), name, true});
 }
+
+namespace {
+
+// true when a link of the model other than `self` is enabled
+bool other_link_enabled(const ModelPtr& m, const Link* self) {
+  if (!m) return false;
+  for (const LinkPtr& l : m->GetLinks())
+    if (l && l.get() != self && l->GetEnabled()) return true;
+  return false;
+}
+
+}  // namespace
+
+void Link::SetEnabled(bool _enable) const {
+  if (_enable) {
+    disabled = false;
+    islandCheck.reset();
+    return;
+  }
+  if (disabled) return;
+  disabled = true;
+  ModelPtr m = model.lock();
+  if (!other_link_enabled(m, this))
+    gzwarn << "car: every link of model [" << (m ? m->GetName() : std::string("?"))
+           << "] is disabled (Link::SetEnabled(false)); Gazebo 11's ODE holds such a model still until a contact or "
+              "a force enables a link, car goes on simulating it (docs/PLUGINS.md)\n";
+  // ODE's islands: in each physics step, an enabled link of the model enables this one
+  if (!m) return;
+  std::shared_ptr<car_gazebo::Hub> hub = car_gazebo::Hub::of(&core_of(m));
+  const int id = hub->islands.connect([this] {
+    if (other_link_enabled(model.lock(), this)) SetEnabled(true);
+  });
+  std::weak_ptr<car_gazebo::Hub> weak = hub;
+  islandCheck = boost::make_shared<event::Connection>([weak, id] {
+    if (auto h = weak.lock()) h->islands.disconnect(id);
+  });
+}
+
+bool Link::GetEnabled() const { return !disabled; }
 
 // ---- Model -----------------------------------------------------------------------------------------------------
 

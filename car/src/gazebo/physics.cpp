@@ -154,6 +154,9 @@ void Model::UpdateController() {
 ignition::math::Pose3d Model::WorldPose() const { return ign(core_of(world.lock()).model_state(name).pose); }
 
 void Model::SetWorldPose(const ignition::math::Pose3d& _pose, bool, bool) {
+  // as Gazebo's: each link's OnPoseChange enables its ODE body
+  for (const LinkPtr& l : links)
+    if (l) l->SetEnabled(true);
   car_sim::World& w = core_of(world.lock());
   car_sim::ModelState s = w.model_state(name);
   s.pose = eig(_pose);
@@ -224,6 +227,7 @@ ignition::math::Pose3d Link::WorldCoGPose() const {
 }
 
 void Link::SetWorldPose(const ignition::math::Pose3d& _pose, bool, bool) {
+  SetEnabled(true);  // as ODELink
   LinkAt l = at(model, name);
   car_sim::ModelState s = l.w.link_state(l.ref);
   s.pose = eig(_pose);
@@ -274,6 +278,7 @@ void Link::SetAngularVel(const ignition::math::Vector3d& _vel) {
 }
 
 void Link::AddForce(const ignition::math::Vector3d& _force) {
+  SetEnabled(true);  // as ODELink
   LinkAt l = at(model, name);
   const Eigen::Isometry3d T = l.w.link_state(l.ref).pose;
   l.w.add_link_wrench(l.ref, eig(_force), Eigen::Vector3d::Zero(), T * eig(inertial->CoG()),
@@ -281,34 +286,40 @@ void Link::AddForce(const ignition::math::Vector3d& _force) {
 }
 
 void Link::AddRelativeForce(const ignition::math::Vector3d& _force) {
+  SetEnabled(true);  // as ODELink
   LinkAt l = at(model, name);
   l.w.add_link_wrench(l.ref, eig(_force), Eigen::Vector3d::Zero(), eig(inertial->CoG()), car_sim::World::Frame::Link);
 }
 
 void Link::AddForceAtWorldPosition(const ignition::math::Vector3d& _force, const ignition::math::Vector3d& _pos) {
+  SetEnabled(true);  // as ODELink
   LinkAt l = at(model, name);
   l.w.add_link_wrench(l.ref, eig(_force), Eigen::Vector3d::Zero(), eig(_pos), car_sim::World::Frame::World);
 }
 
 void Link::AddForceAtRelativePosition(const ignition::math::Vector3d& _force,
                                       const ignition::math::Vector3d& _relPos) {
+  SetEnabled(true);  // as ODELink
   LinkAt l = at(model, name);
   const Eigen::Isometry3d T = l.w.link_state(l.ref).pose;
   l.w.add_link_wrench(l.ref, eig(_force), Eigen::Vector3d::Zero(), T * eig(_relPos), car_sim::World::Frame::World);
 }
 
 void Link::AddLinkForce(const ignition::math::Vector3d& _force, const ignition::math::Vector3d& _offset) {
+  SetEnabled(true);  // as ODELink
   LinkAt l = at(model, name);
   l.w.add_link_wrench(l.ref, eig(_force), Eigen::Vector3d::Zero(), eig(_offset), car_sim::World::Frame::Link);
 }
 
 void Link::AddTorque(const ignition::math::Vector3d& _torque) {
+  SetEnabled(true);  // as ODELink
   LinkAt l = at(model, name);
   l.w.add_link_wrench(l.ref, Eigen::Vector3d::Zero(), eig(_torque), Eigen::Vector3d::Zero(),
                       car_sim::World::Frame::World);
 }
 
 void Link::AddRelativeTorque(const ignition::math::Vector3d& _torque) {
+  SetEnabled(true);  // as ODELink
   LinkAt l = at(model, name);
   l.w.add_link_wrench(l.ref, Eigen::Vector3d::Zero(), eig(_torque), Eigen::Vector3d::Zero(),
                       car_sim::World::Frame::Link);
@@ -404,6 +415,9 @@ void Joint::SetVelocity(unsigned int _index, double _vel) {
 
 void Joint::SetForce(unsigned int _index, double _effort) {
   if (bad_index(_index, name)) return;
+  // as ODEJoint: both links enabled
+  if (LinkPtr c = GetChild()) c->SetEnabled(true);
+  if (LinkPtr p = GetParent()) p->SetEnabled(true);
   ModelPtr m = model.lock();
   WorldPtr w = m->GetWorld();
   const double applied = core_of(w).add_joint_force(m->GetName(), name, _effort);

@@ -2,6 +2,7 @@
 // for each sensor's type, which the plug-in table's shared-library entry runs for them and hands over on the
 // sensor's update_rate while it is active (car_sim/shared_plugin.hpp). No measuring here: only copies.
 #include <algorithm>
+#include <boost/make_shared.hpp>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -34,7 +35,7 @@ namespace {
 template <class List>
 event::ConnectionPtr connect_to(const std::shared_ptr<void>& owner, List* list, int id) {
   std::weak_ptr<void> weak = owner;
-  return std::make_shared<event::Connection>([weak, list, id] {
+  return boost::make_shared<event::Connection>([weak, list, id] {
     if (auto alive = weak.lock()) list->disconnect(id);
   });
 }
@@ -348,7 +349,7 @@ event::ConnectionPtr Camera::ConnectNewImageFrame(
         _subscriber) {
   const int id = events->image.connect(std::move(_subscriber));
   std::weak_ptr<CameraEvents> weak = events;
-  return std::make_shared<event::Connection>([weak, id] {
+  return boost::make_shared<event::Connection>([weak, id] {
     if (auto e = weak.lock()) e->image.disconnect(id);
   });
 }
@@ -364,7 +365,7 @@ event::ConnectionPtr DepthCamera::ConnectNewDepthFrame(
     std::function<void(const float*, unsigned int, unsigned int, unsigned int, const std::string&)> _subscriber) {
   const int id = events->depth.connect(std::move(_subscriber));
   std::weak_ptr<CameraEvents> weak = events;
-  return std::make_shared<event::Connection>([weak, id] {
+  return boost::make_shared<event::Connection>([weak, id] {
     if (auto e = weak.lock()) e->depth.disconnect(id);
   });
 }

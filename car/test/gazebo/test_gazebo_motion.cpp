@@ -1,6 +1,7 @@
 // car's Gazebo 11 API beyond the tutorials (docs/PLUGINS.md): Joint::SetParam/GetParam (ODE's motor),
 // Link::SetGravityMode, WorldForce/WorldTorque, RelativePose, Model::SetLinkWorldPose, World::SetPhysicsEnabled and
-// gzthrow, through the test plug-in test/gazebo/plugins/motion.cc loaded by the world's plug-in table. Values by
+// gzthrow, through the test plug-in test/gazebo/plugins/motion.cc, and Link::SetEnabled through
+// test/gazebo/plugins/link_enabled.cc, loaded by the world's plug-in table. Values by
 // hand; dt = 0.001 s. The box (2 kg, Izz 0.5) and its wheel (1 kg, Izz 0.5) on the continuous joint axle turn apart
 // about one axis: a joint torque tau changes the joint's rate at tau (1/0.5 + 1/0.5) = 4 tau [rad/s^2].
 #include <dlfcn.h>
@@ -17,10 +18,11 @@ namespace {
 
 const std::string kDir = CAR_GAZEBO_TEST_PLUGINS;
 
-// The box with (wheel true) its wheel 1 m above on axle, the motion plug-in in the given mode (and extra elements),
-// at (0, 0, 5) in an empty world with gravity g [m/s^2] along -z.
+// The box with (wheel true) its wheel 1 m above on axle, the plug-in lib<plugin>.so (default: the motion plug-in) in
+// the given mode (and extra elements), at (0, 0, 5) in an empty world with gravity g [m/s^2] along -z.
 std::unique_ptr<World> box_with(const std::string& mode, const std::string& extra = "", bool wheel = true,
-                                double g = 0.0, const std::string& axle = "continuous") {
+                                double g = 0.0, const std::string& axle = "continuous",
+                                const std::string& plugin = "motion") {
   const std::string limits = axle == "revolute" ? R"(lower="-1" upper="1" )" : "";
   const std::string wheel_xml = R"(
   <link name="wheel">
@@ -36,7 +38,7 @@ std::unique_ptr<World> box_with(const std::string& mode, const std::string& extr
     <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
   </link>)" + (wheel ? wheel_xml : std::string()) +
                            R"(
-  <gazebo><plugin name="m" filename=")" + kDir + R"(/libmotion.so"><mode>)" + mode + "</mode>" + extra +
+  <gazebo><plugin name="m" filename=")" + kDir + "/lib" + plugin + R"(.so"><mode>)" + mode + "</mode>" + extra +
                            R"(</plugin></gazebo>
 </robot>)";
   auto w = std::make_unique<World>(empty_world());
@@ -47,15 +49,17 @@ std::unique_ptr<World> box_with(const std::string& mode, const std::string& extr
   return w;
 }
 
-// What the plug-in logged since the last call.
-std::string motion_log() {
-  void* h = dlopen((kDir + "/libmotion.so").c_str(), RTLD_LAZY | RTLD_NOLOAD);
+// What the plug-in lib<plugin>.so logged since the last call (its function car_test_<plugin>_log).
+std::string plugin_log(const std::string& plugin) {
+  void* h = dlopen((kDir + "/lib" + plugin + ".so").c_str(), RTLD_LAZY | RTLD_NOLOAD);
   if (!h) return "<not loaded>";
-  auto log = reinterpret_cast<const char* (*)()>(dlsym(h, "car_test_motion_log"));
+  auto log = reinterpret_cast<const char* (*)()>(dlsym(h, ("car_test_" + plugin + "_log").c_str()));
   std::string s = log();
   dlclose(h);
   return s;
 }
+
+std::string motion_log() { return plugin_log("motion"); }
 
 std::vector<std::string> diags(const World& w, const std::string& code) {
   std::vector<std::string> out;
@@ -162,4 +166,52 @@ TEST(GazeboJoint, SetPositionHoldsThePositionWithinTheLimits) {
   motion_log();
   auto w = box_with("set_position", "<position>1.5</position><preserve>true</preserve>", true, 0.0, "revolute");
   EXPECT_EQ(motion_log(), "ok=1 position=1 velocity=2");
+}
+
+// ---- Link::SetEnabled, as ODE's dBodyDisable under Gazebo 11 (test/gazebo/plugins/link_enabled.cc) -------------
+
+// The wheel disabled in Load, the box enabled: ODE's islands enable the wheel again in the first physics step, so it
+// reads 0 until then (WorldUpdateBegin) and 1 from that step's WorldUpdateEnd on.
+TEST(GazeboLinkEnabled, ADisabledLinkJoinedToAnEnabledOneIsEnabledInTheNextStep) {
+  plugin_log("link_enabled");
+  auto w = box_with("joined", "", true, 0.0, "continuous", "link_enabled");
+  w->step(2);
+  EXPECT_EQ(plugin_log("link_enabled"), "load=0 begin=0 end=1 begin=1 end=1 ");
+}
+
+// The box alone, its only link disabled: nothing enables it, and car says it simulates it anyway (Gazebo's ODE would
+// hold it still): gravity 3 m/s^2 moves it.
+TEST(GazeboLinkEnabled, AModelWithEveryLinkDisabledStaysDisabledAndCarSaysItStillMoves) {
+  plugin_log("link_enabled");
+  testing::internal::CaptureStderr();
+  auto w = box_with("alone", "", false, 3.0, "continuous", "link_enabled");
+  const std::string err = testing::internal::GetCapturedStderr();
+  w->step(2);
+  EXPECT_EQ(plugin_log("link_enabled"), "load=0 begin=0 end=0 begin=0 end=0 ");
+  EXPECT_NE(err.find("car: every link of model [box] is disabled (Link::SetEnabled(false)); Gazebo 11's ODE holds "
+                     "such a model still until a contact or a force enables a link, car goes on simulating it "
+                     "(docs/PLUGINS.md)"),
+            std::string::npos)
+      << err;
+  EXPECT_LT(w->model_state("box").pose.translation().z(), 5.0);
+}
+
+// AddForce on the disabled link enables it at once, as ODELink's (even a zero force).
+TEST(GazeboLinkEnabled, AForceOnADisabledLinkEnablesIt) {
+  plugin_log("link_enabled");
+  testing::internal::CaptureStderr();
+  auto w = box_with("alone_force", "", false, 0.0, "continuous", "link_enabled");
+  testing::internal::GetCapturedStderr();
+  w->step(2);
+  EXPECT_EQ(plugin_log("link_enabled"), "load=0 begin=0 end=0 begin=1 end=1 ");
+}
+
+// Both links disabled; Joint::SetForce on the axle enables both, as ODEJoint's.
+TEST(GazeboLinkEnabled, SetForceOnAJointEnablesBothOfItsLinks) {
+  plugin_log("link_enabled");
+  testing::internal::CaptureStderr();
+  auto w = box_with("joint_force", "", true, 0.0, "continuous", "link_enabled");
+  testing::internal::GetCapturedStderr();
+  w->step(2);
+  EXPECT_EQ(plugin_log("link_enabled"), "load=00 begin=00 end=00 begin=11 end=11 ");
 }

@@ -6,6 +6,8 @@
 #include <functional>
 #include <memory>
 
+#include "gazebo/common/CommonTypes.hh"
+
 namespace gazebo {
 namespace event {
 
@@ -22,8 +24,6 @@ class Connection {
   std::function<void()> disconnect;
   int id;
 };
-
-using ConnectionPtr = std::shared_ptr<Connection>;
 
 }  // namespace event
 }  // namespace gazebo

@@ -10,6 +10,7 @@
 #include <sdf/sdf.hh>
 #include <string>
 
+#include "gazebo/common/CommonTypes.hh"
 #include "gazebo/common/Console.hh"
 #include "gazebo/physics/PhysicsTypes.hh"
 #include "gazebo/sensors/SensorTypes.hh"

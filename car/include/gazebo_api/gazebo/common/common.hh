@@ -2,6 +2,7 @@
 #pragma once
 
 #include "gazebo/gazebo_config.h"
+#include "gazebo/common/CommonTypes.hh"
 #include "gazebo/common/Console.hh"
 #include "gazebo/common/Event.hh"
 #include "gazebo/common/Events.hh"

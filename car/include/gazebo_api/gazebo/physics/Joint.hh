@@ -7,6 +7,8 @@
 #include <ignition/math/Vector3.hh>
 #include <string>
 
+#include "gazebo/common/Event.hh"
+#include "gazebo/common/Events.hh"
 #include "gazebo/common/Time.hh"
 #include "gazebo/physics/Base.hh"
 #include "gazebo/physics/PhysicsTypes.hh"

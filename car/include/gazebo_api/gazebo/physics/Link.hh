@@ -7,6 +7,8 @@
 #include <ignition/math/Vector3.hh>
 #include <string>
 
+#include "gazebo/common/CommonTypes.hh"
+#include "gazebo/common/Event.hh"
 #include "gazebo/physics/Entity.hh"
 #include "gazebo/physics/PhysicsTypes.hh"
 
@@ -69,10 +71,20 @@ class Link : public Entity {
   // false: gravity no longer acts on the link (from the coming step on; kept over resets).
   void SetGravityMode(bool _mode);
   bool GetGravityMode() const;
+  // ODE's dBodyEnable / dBodyDisable, as Gazebo 11's ODELink. ODE enables again, at the next step, a disabled body
+  // that a joint links to an enabled one (its islands), so in a model with an enabled link a disabled link is
+  // enabled after the coming step; forces, torques and poses set on the link, and SetForce or SetParam on its
+  // joints, enable it at once. A model whose every link is disabled: Gazebo's ODE holds it still until a contact or
+  // a force enables a link; car goes on simulating it, and says so once (gzwarn).
+  void SetEnabled(bool _enable) const;
+  bool GetEnabled() const;
 
  private:
   boost::weak_ptr<Model> model;
   InertialPtr inertial;
+  // car: SetEnabled(false) until ODE's island rule enables the link again, checked after each step
+  mutable bool disabled = false;
+  mutable event::ConnectionPtr islandCheck;
 };
 
 }  // namespace physics

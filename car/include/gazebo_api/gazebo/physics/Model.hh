@@ -6,6 +6,7 @@
 #include <sdf/sdf.hh>
 #include <string>
 
+#include "gazebo/common/CommonTypes.hh"
 #include "gazebo/physics/Entity.hh"
 #include "gazebo/physics/PhysicsTypes.hh"
 

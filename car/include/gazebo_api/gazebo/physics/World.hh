@@ -12,6 +12,8 @@
 #include <boost/weak_ptr.hpp>
 #include <sdf/sdf.hh>
 
+#include "gazebo/common/CommonTypes.hh"
+#include "gazebo/common/Event.hh"
 #include "gazebo/common/Time.hh"
 #include "gazebo/physics/Base.hh"
 #include "gazebo/physics/PhysicsTypes.hh"
