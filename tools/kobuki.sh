@@ -27,10 +27,9 @@ if [ $# -lt 1 ]; then
 fi
 MIRROR=$(realpath "$1")
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
-if [ -z "${CMAKE_PREFIX_PATH:-}" ] || ! rospack find car > /dev/null 2>&1; then
-  echo "kobuki: source car's workspace first (source $ROOT/.ws/devel/setup.bash)" >&2
-  exit 2
-fi
+TOOL=kobuki
+# shellcheck source=tools/mirror_ws.sh
+source "$ROOT/tools/mirror_ws.sh"
 missing=""
 [ -f /usr/include/urdf/model.h ] || missing+=" liburdf-dev"
 [ -f /usr/include/tf/transform_broadcaster.h ] || missing+=" libtf-dev"
@@ -39,66 +38,18 @@ if [ -n "$missing" ]; then
   echo "kobuki: apt-get install$missing" >&2
   exit 2
 fi
-WS=$(mktemp -d /tmp/car_kobuki.XXXXXX)
-SRC=$WS/src
-mkdir -p "$SRC"
-echo "kobuki: workspace $WS"
-
-# export_from OWNER+NAME BRANCH DEST PATH...: the files under PATH at BRANCH into DEST (as tools/real_robots.sh)
-export_from() {
-  local name=$1 branch=$2 dest=$3
-  shift 3
-  local d=$MIRROR/$name gitdir mode type sha path
-  if [ -d "$d/repo" ]; then gitdir=$d/repo; elif [ -d "$d/.git" ]; then gitdir=$d/.git; else gitdir=$d; fi
-  if ! git --git-dir="$gitdir" rev-parse -q --verify "$branch^{commit}" > /dev/null; then
-    echo "kobuki: $gitdir has no branch $branch" >&2
-    exit 2
-  fi
-  while IFS=$'\t' read -r meta path; do
-    read -r mode type sha <<< "$meta"
-    [ "$type" = blob ] || continue
-    mkdir -p "$dest/$(dirname "$path")"
-    if ! git --git-dir="$gitdir" cat-file blob "$sha" > "$dest/$path" 2> /dev/null; then
-      rm -f "$dest/$path"
-      echo "$name: $path absent from the snapshot" >> "$WS/absent.txt"
-    fi
-    [ "$mode" = 100755 ] && [ -f "$dest/$path" ] && chmod +x "$dest/$path"
-  done < <(git --git-dir="$gitdir" ls-tree -r "$branch" -- "$@")
-  echo "$name @ $(git --git-dir="$gitdir" rev-parse --short "$branch") ($branch)" >> "$WS/sources.txt"
-}
+mirror_ws_begin
 
 export_from yujinrobot+kobuki_desktop melodic "$SRC" kobuki_gazebo kobuki_gazebo_plugins
 export_from yujinrobot+kobuki melodic "$SRC" kobuki_description
 export_from yujinrobot+kobuki_msgs noetic "$SRC/kobuki_msgs" .
 cat "$WS/sources.txt" "$WS/absent.txt" 2> /dev/null
+mirror_ws_build
 
-if ! (cd "$WS" && catkin_make -j2 > "$WS/build.log" 2>&1); then
-  echo "kobuki: the scratch workspace did not build; the first errors ($WS/build.log):" >&2
-  grep -m 10 -E "error|Error" "$WS/build.log" >&2
-  exit 1
-fi
-# shellcheck disable=SC1091
-source "$WS/devel/setup.bash"
-
-port=$((11400 + RANDOM % 400))
-export ROS_MASTER_URI=http://localhost:$port
-roscore -p "$port" > "$WS/roscore.log" 2>&1 &
-core=$!
-sleep 3
-rosparam set /use_sim_time true
-/usr/bin/python3 "$ROOT/tools/kobuki_probe.py" > "$WS/results.txt" 2> "$WS/probe.log" &
-probe=$!
-sleep 2
-roslaunch kobuki_gazebo kobuki_empty_world.launch > "$WS/launch.log" 2>&1 &
-rl=$!
 status=0
-wait "$probe" || status=1
-kill -INT "$rl" 2> /dev/null
-wait "$rl" 2> /dev/null
-kill -INT "$core" 2> /dev/null
-wait "$core" 2> /dev/null
+run_beside kobuki /usr/bin/python3 "$ROOT/tools/kobuki_probe.py" -- kobuki_gazebo kobuki_empty_world.launch || status=1
 echo
-cat "$WS/results.txt"
-tail -3 "$WS/probe.log"
+cat "$WS/results-kobuki.txt"
+tail -3 "$WS/probe-kobuki.log"
 echo "kobuki: logs in $WS"
 exit $status

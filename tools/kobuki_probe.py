@@ -20,6 +20,8 @@ from nav_msgs.msg import Odometry
 from roslib.message import get_message_class
 from sensor_msgs.msg import Imu
 
+import probe_util
+
 # kobuki_msgs comes from the scratch workspace tools/kobuki.sh builds, not from car's dependencies
 BumperEvent = get_message_class('kobuki_msgs/BumperEvent')
 CliffEvent = get_message_class('kobuki_msgs/CliffEvent')
@@ -29,7 +31,8 @@ BOX = """<?xml version="1.0"?><sdf version="1.6"><model name="{name}"><static>tr
 <visual name="v"><geometry><box><size>{sx} {sy} {sz}</size></box></geometry></visual></link></model></sdf>"""
 
 state = {"odom": [], "imu": 0, "bumper": None, "cliff": None}
-results = []
+results = probe_util.Results()
+check = results.check
 
 
 def on_odom(m):
@@ -51,15 +54,7 @@ def on_cliff(m):
 
 
 def wait_until(what, cond, sim_s, wall_s=120.0):
-    """Until cond() or sim_s of sim time passed; False (with a message) when the wall guard ends it first."""
-    end_sim = rospy.get_time() + sim_s
-    end_wall = time.time() + wall_s
-    while not cond() and rospy.get_time() < end_sim:
-        if time.time() > end_wall:
-            print("kobuki_probe: gave up waiting for %s (wall guard %.0f s)" % (what, wall_s), file=sys.stderr)
-            return False
-        time.sleep(0.01)
-    return cond()
+    return probe_util.wait_until("kobuki_probe", what, cond, sim_s, wall_s)
 
 
 def drive(pub, v, sim_s, stop_when=lambda: False):
@@ -71,10 +66,6 @@ def drive(pub, v, sim_s, stop_when=lambda: False):
         pub.publish(t)
         time.sleep(0.02)
     pub.publish(Twist())
-
-
-def check(name, figure, ok):
-    results.append("%s | %s | %s" % (name, figure, "ok" if ok else "FAIL"))
 
 
 def spawn(name, x, z, sx, sy, sz):
@@ -94,7 +85,7 @@ def main():
     pub = rospy.Publisher("/mobile_base/commands/velocity", Twist, queue_size=10)
     if not wait_until("the first /odom message", lambda: len(state["odom"]) > 0, 1e9, 180):
         check("/odom publishes", "no message", False)
-        print("\n".join(results))
+        print("\n".join(results.lines))
         return 1
     rospy.wait_for_service("/gazebo/spawn_sdf_model", 30)
     # settled after the 1.5 m drop of robot.launch.xml's spawn
@@ -133,8 +124,8 @@ def main():
     check("cliff sensor at an edge, as Gazebo 11 (no CLIFF event: kobuki#431)",
           "CLIFF, sensor %s" % c[0] if c else "no CLIFF event in 15 s, odom +%.2f m past the ledge's 0.8 m" % moved,
           c is None and moved > 0.8)
-    print("\n".join(results))
-    return 0 if all(r.endswith("ok") for r in results) else 1
+    print("\n".join(results.lines))
+    return 0 if results.all_ok() else 1
 
 
 if __name__ == "__main__":

@@ -10,16 +10,18 @@ gazebo_controller.yaml) the left finger holds within 0.098 / 20 = 0.0049 rad of 
 integral only shrinks it); without it (SetPosition every step) the two are equal to the step's motion, well under
 0.01 rad. The right finger reaches its goal within the trajectory controller's goal tolerance (0.02 rad here)."""
 import sys
-import time
 
 import rospy
 from control_msgs.msg import PidState
 from sensor_msgs.msg import JointState
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
+import probe_util
+
 HAS_PID = len(sys.argv) > 1 and sys.argv[1] == "pid"
 state = {"joints": None, "pid": 0, "pid_max": 0.0, "lag": 0.0}
-results = []
+results = probe_util.Results()
+check = results.check
 
 
 def on_joints(m):
@@ -36,19 +38,7 @@ def on_pid(m):
 
 
 def wait_until(what, cond, sim_s, wall_s=120.0):
-    """Until cond() or sim_s of sim time passed; False (with a message) when the wall guard ends it first."""
-    end_sim = rospy.get_time() + sim_s
-    end_wall = time.time() + wall_s
-    while not cond() and rospy.get_time() < end_sim:
-        if time.time() > end_wall:
-            print("mimic_probe: gave up waiting for %s (wall guard %.0f s)" % (what, wall_s), file=sys.stderr)
-            return False
-        time.sleep(0.01)
-    return cond()
-
-
-def check(name, figure, ok):
-    results.append("%s | %s | %s" % (name, figure, "ok" if ok else "FAIL"))
+    return probe_util.wait_until("mimic_probe", what, cond, sim_s, wall_s)
 
 
 def move(pub, goal, sim_s=1.0):
@@ -96,5 +86,5 @@ if __name__ == "__main__":
     try:
         main()
     finally:
-        print("\n".join(results))
-    sys.exit(0 if results and all(r.endswith("ok") for r in results) else 1)
+        print("\n".join(results.lines))
+    sys.exit(0 if results.all_ok() else 1)

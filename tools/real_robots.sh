@@ -37,41 +37,10 @@ MIRROR=$(realpath "$1")
 shift
 ROBOTS=${*:-husky jackal}
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
-if [ -z "${CMAKE_PREFIX_PATH:-}" ] || ! rospack find car > /dev/null 2>&1; then
-  echo "real_robots: source car's workspace first (source $ROOT/.ws/devel/setup.bash)" >&2
-  exit 2
-fi
-WS=$(mktemp -d /tmp/car_real_robots.XXXXXX)
-SRC=$WS/src
-mkdir -p "$SRC"
-echo "real_robots: workspace $WS"
-
-# export_from OWNER+NAME BRANCH DEST PATH...: the files under PATH at BRANCH into DEST (from a git dir, a folder
-# holding repo/, or a checkout), file by file: a snapshot may lack some large objects, which git archive stops at.
-# Appends the commit to sources.txt.
-export_from() {
-  local name=$1 branch=$2 dest=$3
-  shift 3
-  local d=$MIRROR/$name gitdir mode type sha path
-  if [ -d "$d/repo" ]; then gitdir=$d/repo; elif [ -d "$d/.git" ]; then gitdir=$d/.git; else gitdir=$d; fi
-  if ! git --git-dir="$gitdir" rev-parse -q --verify "$branch^{commit}" > /dev/null; then
-    echo "real_robots: $gitdir has no branch $branch" >&2
-    exit 2
-  fi
-  while IFS=$'\t' read -r meta path; do
-    read -r mode type sha <<< "$meta"
-    [ "$type" = blob ] || continue
-    mkdir -p "$dest/$(dirname "$path")"
-    if [ "$mode" = 120000 ]; then
-      ln -sf "$(git --git-dir="$gitdir" cat-file blob "$sha")" "$dest/$path"
-    elif ! git --git-dir="$gitdir" cat-file blob "$sha" > "$dest/$path" 2> /dev/null; then
-      rm -f "$dest/$path"
-      echo "$name: $path absent from the snapshot" >> "$WS/absent.txt"
-    fi
-    [ "$mode" = 100755 ] && [ -f "$dest/$path" ] && chmod +x "$dest/$path"
-  done < <(git --git-dir="$gitdir" ls-tree -r "$branch" -- "$@")
-  echo "$name @ $(git --git-dir="$gitdir" rev-parse --short "$branch") ($branch)" >> "$WS/sources.txt"
-}
+TOOL=real_robots
+# shellcheck source=tools/mirror_ws.sh
+source "$ROOT/tools/mirror_ws.sh"
+mirror_ws_begin
 
 # A stub: our package.xml and CMakeLists, and the named xacro files from the package's own repository
 stub() {
@@ -122,10 +91,7 @@ export_from osrf+gazebo_models master "$WS/models" drc_practice_orange_jersey_ba
   drc_practice_blue_cylinder drc_practice_angled_barrier_135
 export GAZEBO_MODEL_PATH=$WS/models${GAZEBO_MODEL_PATH:+:$GAZEBO_MODEL_PATH}
 
-(cd "$WS" && catkin_make -j2 > "$WS/build.log" 2>&1) \
-  || { echo "real_robots: the scratch workspace did not build (see $WS/build.log)" >&2; exit 1; }
-# shellcheck disable=SC1091
-source "$WS/devel/setup.bash"
+mirror_ws_build
 cat "$WS/sources.txt" "$WS/stubs.txt" "$WS/absent.txt" 2> /dev/null
 
 # ---- the runs -------------------------------------------------------------------------------------------------
