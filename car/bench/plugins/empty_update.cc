@@ -7,7 +7,9 @@
 #include <gazebo/physics/physics.hh>
 
 // calls of every instance's callback, read by bench_gazebo through dlsym
-extern "C" unsigned long car_bench_empty_update_calls = 0;
+extern "C" {
+unsigned long car_bench_empty_update_calls = 0;
+}
 
 namespace gazebo {
 class EmptyUpdate : public ModelPlugin {

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "gazebo/common/Event.hh"
+#include "gazebo/common/Image.hh"
 #include "gazebo/common/PID.hh"
 #include "gazebo/common/Plugin.hh"
 #include "gazebo/common/Time.hh"
@@ -142,6 +143,19 @@ double PID::Update(double _error, common::Time _dt) {
   cmd = -(pGain * pErr) - i - dGain * dErr;
   if (cmdMax >= cmdMin) cmd = std::min(std::max(cmd, cmdMin), cmdMax);
   return cmd;
+}
+
+// As Gazebo 11's Image::ConvertPixelFormat (common/Image.cc): the older names first, then PixelFormatNames.
+Image::PixelFormat Image::ConvertPixelFormat(const std::string& _format) {
+  if (_format == "L8" || _format == "L_INT8") return L_INT8;
+  if (_format == "L16" || _format == "L_INT16" || _format == "L_UINT16") return L_INT16;
+  if (_format == "R8G8B8" || _format == "RGB_INT8") return RGB_INT8;
+  if (_format == "R16G16B16" || _format == "RGB_INT16" || _format == "RGB_UINT16") return RGB_INT16;
+  if (_format == "FLOAT32") return R_FLOAT32;
+  if (_format == "FLOAT16") return R_FLOAT16;
+  for (unsigned int i = 0; i < PIXEL_FORMAT_COUNT; ++i)
+    if (PixelFormatNames[i] == _format) return static_cast<PixelFormat>(i);
+  return UNKNOWN_PIXEL_FORMAT;
 }
 
 }  // namespace common

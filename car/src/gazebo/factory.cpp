@@ -113,6 +113,19 @@ namespace msgs {
 void Set(Pose* _p, const ignition::math::Pose3d& _v) { _p->value = _v; }
 ignition::math::Pose3d ConvertIgn(const Pose& _p) { return _p.value; }
 
+void Set(Time* _t, const common::Time& _v) {
+  _t->set_sec(_v.sec);
+  _t->set_nsec(_v.nsec);
+}
+
+Time Convert(const common::Time& _t) {
+  Time t;
+  Set(&t, _t);
+  return t;
+}
+
+common::Time Convert(const Time& _t) { return common::Time(_t.sec(), _t.nsec()); }
+
 }  // namespace msgs
 
 namespace physics {

@@ -1,5 +1,6 @@
-// car's Gazebo 11 API: transport within one world, for the messages car carries (msgs::Vector3d): Subscriber,
-// Node::Subscribe, Advertise and Publisher::Publish of Vector3d, and the hub's delivery (docs/PLUGINS.md "Transport").
+// car's Gazebo 11 API: transport within one world, for the messages car carries (msgs::Vector3d, msgs::ImageStamped):
+// Subscriber, Node::Subscribe, Advertise and Publisher::Publish of each, and the hub's delivery (docs/PLUGINS.md
+// "Transport").
 // Gazebo's transport hands a message to its subscribers on its own threads, some time after Publish; car delivers at
 // one point of its step instead: the end of the step the message was published in.
 #include <algorithm>
@@ -72,7 +73,42 @@ car_gazebo::Hub& hub_of(const std::string& world) {
   return *h;
 }
 
-const char* const kVector3d = "gazebo.msgs.Vector3d";
+// The messages car's transport carries, by Gazebo's type names
+template <class M>
+const char* type_name();
+template <>
+const char* type_name<msgs::Vector3d>() {
+  return "gazebo.msgs.Vector3d";
+}
+template <>
+const char* type_name<msgs::ImageStamped>() {
+  return "gazebo.msgs.ImageStamped";
+}
+
+// Node::Advertise, Publisher::Publish and Node::Subscribe for a message M that car carries
+template <class M>
+PublisherPtr advertise(Node& node, const std::string& topic) {
+  return PublisherPtr(new Publisher(node.DecodeTopicName(topic), type_name<M>(), node.GetTopicNamespace()));
+}
+
+template <class M>
+void publish(const std::string& world, const std::string& topic, const M& message) {
+  hub_of(world).publish(topic, type_name<M>(), boost::shared_ptr<const void>(new M(message)));
+}
+
+template <class M>
+SubscriberPtr subscribe(Node& node, const std::string& _topic,
+                        std::function<void(const boost::shared_ptr<M const>&)> cb, bool latching) {
+  const std::string topic = node.DecodeTopicName(_topic);
+  car_gazebo::Hub& hub = hub_of(node.GetTopicNamespace());
+  const int id = hub.subscribe(
+      topic, type_name<M>(),
+      [cb](const boost::shared_ptr<const void>& msg) { cb(boost::static_pointer_cast<const M>(msg)); }, latching);
+  std::weak_ptr<car_gazebo::Hub> weak = hub.shared_from_this();
+  return SubscriberPtr(new Subscriber(topic, [weak, id] {
+    if (auto h = weak.lock()) h->unsubscribe(id);
+  }));
+}
 
 }  // namespace
 
@@ -87,28 +123,36 @@ void Subscriber::Unsubscribe() const {
 
 template <>
 PublisherPtr Node::Advertise<msgs::Vector3d>(const std::string& _topic, unsigned int, double) {
-  return PublisherPtr(new Publisher(this->DecodeTopicName(_topic), kVector3d, this->topicNamespace));
+  return advertise<msgs::Vector3d>(*this, _topic);
 }
 
 template <>
 void Publisher::Publish<msgs::Vector3d>(const msgs::Vector3d& _message, bool) {
-  hub_of(this->world).publish(this->topic, kVector3d, boost::shared_ptr<const void>(new msgs::Vector3d(_message)));
+  publish(this->world, this->topic, _message);
 }
 
 template <>
 SubscriberPtr Node::SubscribeCallback<msgs::Vector3d>(
     const std::string& _topic, std::function<void(const boost::shared_ptr<msgs::Vector3d const>&)> _cb,
     bool _latching) {
-  const std::string topic = this->DecodeTopicName(_topic);
-  car_gazebo::Hub& hub = hub_of(this->topicNamespace);
-  const int id = hub.subscribe(
-      topic, kVector3d,
-      [_cb](const boost::shared_ptr<const void>& _msg) { _cb(boost::static_pointer_cast<const msgs::Vector3d>(_msg)); },
-      _latching);
-  std::weak_ptr<car_gazebo::Hub> weak = hub.shared_from_this();
-  return SubscriberPtr(new Subscriber(topic, [weak, id] {
-    if (auto h = weak.lock()) h->unsubscribe(id);
-  }));
+  return subscribe<msgs::Vector3d>(*this, _topic, std::move(_cb), _latching);
+}
+
+template <>
+PublisherPtr Node::Advertise<msgs::ImageStamped>(const std::string& _topic, unsigned int, double) {
+  return advertise<msgs::ImageStamped>(*this, _topic);
+}
+
+template <>
+void Publisher::Publish<msgs::ImageStamped>(const msgs::ImageStamped& _message, bool) {
+  publish(this->world, this->topic, _message);
+}
+
+template <>
+SubscriberPtr Node::SubscribeCallback<msgs::ImageStamped>(
+    const std::string& _topic, std::function<void(const boost::shared_ptr<msgs::ImageStamped const>&)> _cb,
+    bool _latching) {
+  return subscribe<msgs::ImageStamped>(*this, _topic, std::move(_cb), _latching);
 }
 
 }  // namespace transport

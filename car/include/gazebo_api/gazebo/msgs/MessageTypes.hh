@@ -4,10 +4,12 @@
 
 #include <boost/shared_ptr.hpp>
 
+#include "gazebo/msgs/image_stamped.pb.h"
 #include "gazebo/msgs/vector3d.pb.h"
 
 namespace gazebo {
 
 typedef const boost::shared_ptr<const msgs::Vector3d> ConstVector3dPtr;
+typedef const boost::shared_ptr<const msgs::ImageStamped> ConstImageStampedPtr;
 
 }  // namespace gazebo

@@ -1,6 +1,7 @@
 // car's Gazebo 11 API (docs/PLUGINS.md): #include <gazebo/msgs/msgs.hh>, the messages car offers as plain classes
 // with protobuf's accessors (not protobuf): msgs::Factory (a model to insert, Gazebo's ~/factory topic) with
-// msgs::Pose, the contact messages a ContactSensor gives (contact.pb.h, ...), and the conversions to ignition-math.
+// msgs::Pose, the contact messages a ContactSensor gives (contact.pb.h, ...), msgs::ImageStamped with msgs::Image,
+// and the conversions to ignition-math and common::Time.
 // The other messages are not declared.
 #pragma once
 
@@ -8,8 +9,11 @@
 #include <ignition/math/Vector3.hh>
 #include <string>
 
+#include "gazebo/common/Time.hh"
 #include "gazebo/msgs/contact.pb.h"
 #include "gazebo/msgs/contacts.pb.h"
+#include "gazebo/msgs/image.pb.h"
+#include "gazebo/msgs/image_stamped.pb.h"
 #include "gazebo/msgs/MessageTypes.hh"
 #include "gazebo/msgs/joint_wrench.pb.h"
 #include "gazebo/msgs/time.pb.h"
@@ -53,6 +57,11 @@ void Set(Pose* _p, const ignition::math::Pose3d& _v);
 ignition::math::Pose3d ConvertIgn(const Pose& _p);
 
 inline ignition::math::Vector3d ConvertIgn(const Vector3d& _v) { return {_v.x(), _v.y(), _v.z()}; }
+
+// msgs::Time <-> common::Time (sec, nsec as they are)
+void Set(Time* _t, const common::Time& _v);
+Time Convert(const common::Time& _t);
+common::Time Convert(const Time& _t);
 
 }  // namespace msgs
 }  // namespace gazebo

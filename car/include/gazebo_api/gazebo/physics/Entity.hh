@@ -7,8 +7,10 @@
 #include <ignition/math/Vector3.hh>
 
 #include "gazebo/common/CommonTypes.hh"
+#include "gazebo/msgs/msgs.hh"
 #include "gazebo/physics/Base.hh"
 #include "gazebo/physics/PhysicsTypes.hh"
+#include "gazebo/transport/TransportTypes.hh"
 
 namespace gazebo {
 namespace physics {

@@ -9,6 +9,7 @@
 
 #include "gazebo/common/CommonTypes.hh"
 #include "gazebo/common/Event.hh"
+#include "gazebo/msgs/msgs.hh"
 #include "gazebo/physics/Entity.hh"
 #include "gazebo/physics/PhysicsTypes.hh"
 

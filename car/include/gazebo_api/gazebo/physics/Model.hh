@@ -9,6 +9,7 @@
 #include "gazebo/common/CommonTypes.hh"
 #include "gazebo/physics/Entity.hh"
 #include "gazebo/physics/PhysicsTypes.hh"
+#include "gazebo/transport/TransportTypes.hh"
 
 namespace gazebo {
 namespace physics {

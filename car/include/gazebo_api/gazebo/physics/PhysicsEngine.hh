@@ -3,7 +3,9 @@
 
 #include <string>
 
+#include "gazebo/msgs/msgs.hh"
 #include "gazebo/physics/PhysicsTypes.hh"
+#include "gazebo/transport/TransportTypes.hh"
 
 namespace car_sim {
 class World;

@@ -9,7 +9,13 @@
 #include <vector>
 
 #include "gazebo/common/Event.hh"
+#include "gazebo/common/PID.hh"
+#include "gazebo/common/Time.hh"
+#include "gazebo/msgs/MessageTypes.hh"
+#include "gazebo/msgs/msgs.hh"
 #include "gazebo/rendering/RenderTypes.hh"
+#include "gazebo/transport/Node.hh"
+#include "gazebo/transport/Subscriber.hh"
 
 namespace gazebo {
 namespace rendering {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "gazebo/common/CommonTypes.hh"
 #include "gazebo/rendering/Camera.hh"
 
 namespace gazebo {

@@ -1,15 +1,21 @@
-// car's Gazebo 11 API (docs/PLUGINS.md "Transport"): transport::Node, as far as the factory and velodyne tutorials use
-// it: Init with a world's name; Advertise<msgs::Factory> on ~/factory, which inserts models into that world; and
-// Advertise and Subscribe for msgs::Vector3d on any topic, within this process. car has no Gazebo transport between
-// processes: other message types fail to link.
+// car's Gazebo 11 API (docs/PLUGINS.md "Transport"): transport::Node, as far as the factory and velodyne tutorials and
+// camera plug-ins use it: Init with a world's name; Advertise<msgs::Factory> on ~/factory, which inserts models into
+// that world; and Advertise and Subscribe for msgs::Vector3d and msgs::ImageStamped on any topic, within this
+// process. car has no Gazebo transport between processes: other message types fail to link.
 #pragma once
 
+// as Gazebo 11's Node.hh: boost::bind with its placeholders _1, _2, ... in the global namespace, quietly
+#ifndef BOOST_BIND_GLOBAL_PLACEHOLDERS
+#define BOOST_BIND_GLOBAL_PLACEHOLDERS
+#endif
+#include <boost/bind.hpp>
 #include <boost/enable_shared_from_this.hpp>
 #include <boost/shared_ptr.hpp>
 #include <functional>
 #include <string>
 
 #include "gazebo/msgs/msgs.hh"
+#include "gazebo/transport/Publisher.hh"
 #include "gazebo/transport/Subscriber.hh"
 #include "gazebo/transport/TransportTypes.hh"
 
@@ -26,11 +32,12 @@ class Node : public boost::enable_shared_from_this<Node> {
   // "~/x" -> "/gazebo/<namespace>/x"; other names as they are.
   std::string DecodeTopicName(const std::string& _topic);
   // Offered for M = msgs::Factory on "~/factory" (or "/gazebo/<namespace>/factory") only: another topic throws
-  // std::invalid_argument naming it; and for M = msgs::Vector3d on any topic ("~/" decoded as above).
+  // std::invalid_argument naming it; and for M = msgs::Vector3d and msgs::ImageStamped on any topic ("~/" decoded as
+  // above); _queueLimit and _hzRate have no effect.
   template <typename M>
   PublisherPtr Advertise(const std::string& _topic, unsigned int _queueLimit = 1000, double _hzRate = 0);
 
-  // Offered for M = msgs::Vector3d: the callback gets each message published on the topic in this node's world by
+  // Offered for M = msgs::Vector3d and msgs::ImageStamped: the callback gets each message published on the topic in this node's world by
   // the subscribers present at Publish, at the delivery point: the end of the step it was published in (after the
   // sensors), or the node's next turn while paused; never inside Publish. _latching: the topic's last message, if
   // any, comes at the next delivery point too.
@@ -62,6 +69,12 @@ PublisherPtr Node::Advertise<msgs::Vector3d>(const std::string& _topic, unsigned
 template <>
 SubscriberPtr Node::SubscribeCallback<msgs::Vector3d>(
     const std::string& _topic, std::function<void(const boost::shared_ptr<msgs::Vector3d const>&)> _cb, bool _latching);
+template <>
+PublisherPtr Node::Advertise<msgs::ImageStamped>(const std::string& _topic, unsigned int _queueLimit, double _hzRate);
+template <>
+SubscriberPtr Node::SubscribeCallback<msgs::ImageStamped>(
+    const std::string& _topic, std::function<void(const boost::shared_ptr<msgs::ImageStamped const>&)> _cb,
+    bool _latching);
 
 }  // namespace transport
 }  // namespace gazebo
