@@ -1,8 +1,12 @@
 // car's Gazebo 11 API: common::Time, common::PID and event::Connection (docs/PLUGINS.md). car's own code; the
 // rules are Gazebo 11's as its documentation and sources state them.
+#include <time.h>
+
 #include <cmath>
+#include <cstdio>
 #include <utility>
 
+#include "gazebo/common/Console.hh"
 #include "gazebo/common/Event.hh"
 #include "gazebo/common/Image.hh"
 #include "gazebo/common/PID.hh"
@@ -144,6 +148,55 @@ double PID::Update(double _error, common::Time _dt) {
   if (cmdMax >= cmdMin) cmd = std::min(std::max(cmd, cmdMin), cmdMax);
   return cmd;
 }
+
+// ---- Time: the wall clock and sleeping, as Gazebo 11's common/Time.cc -------------------------------------------
+
+const Time& Time::GetWallTime() {
+  static thread_local Time wall;
+  struct timespec tv;
+  clock_gettime(CLOCK_REALTIME, &tv);
+  wall = Time(static_cast<int32_t>(tv.tv_sec), static_cast<int32_t>(tv.tv_nsec));
+  return wall;
+}
+
+const std::string& Time::GetWallTimeAsISOString() {
+  static thread_local std::string iso;
+  struct timespec tv;
+  clock_gettime(CLOCK_REALTIME, &tv);
+  struct tm local;
+  localtime_r(&tv.tv_sec, &local);
+  char text[64];
+  const size_t n = strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%S", &local);
+  snprintf(text + n, sizeof(text) - n, ".%06ld", static_cast<long>(tv.tv_nsec / 1000));
+  iso = text;
+  return iso;
+}
+
+void Time::SetToWallTime() { *this = GetWallTime(); }
+
+// A time below the clock's resolution (1 ns here; zero and negative times) sleeps not at all and says so on gzlog,
+// with upstream's words.
+Time Time::Sleep(const common::Time& _time) {
+  Time left;
+  struct timespec resolution;
+  clock_getres(CLOCK_REALTIME, &resolution);
+  if (!(_time >= Time(static_cast<int32_t>(resolution.tv_sec), static_cast<int32_t>(resolution.tv_nsec)))) {
+    gzlog << "Sleep time is larger than clock resolution, skipping sleep\n";
+    return left;
+  }
+  struct timespec interval, remainder;
+  interval.tv_sec = _time.sec;
+  interval.tv_nsec = _time.nsec;
+  if (clock_nanosleep(CLOCK_MONOTONIC, 0, &interval, &remainder) != 0) {
+    left.sec = static_cast<int32_t>(remainder.tv_sec);
+    left.nsec = static_cast<int32_t>(remainder.tv_nsec);
+  }
+  return left;
+}
+
+Time Time::MSleep(unsigned int _ms) { return Sleep(Time(0, static_cast<int32_t>(_ms * 1000000))); }
+
+Time Time::NSleep(unsigned int _ns) { return Sleep(Time(0, static_cast<int32_t>(_ns))); }
 
 // As Gazebo 11's Image::ConvertPixelFormat (common/Image.cc): the older names first, then PixelFormatNames.
 Image::PixelFormat Image::ConvertPixelFormat(const std::string& _format) {

@@ -8,6 +8,7 @@
 
 #include "car_sim/world.hpp"
 #include "gazebo/common/Console.hh"
+#include "gazebo/common/Exception.hh"
 #include "gazebo/physics/physics.hh"
 #include "hub.hpp"
 
@@ -527,6 +528,17 @@ std::map<std::string, double> JointController::GetForces() const { return forces
 std::map<std::string, double> JointController::GetPositions() const { return positions; }
 std::map<std::string, double> JointController::GetVelocities() const { return velocities; }
 common::Time JointController::GetLastUpdateTime() const { return prevUpdateTime; }
+
+// ---- PhysicsIface --------------------------------------------------------------------------------------------
+
+WorldPtr get_world(const std::string& _name) {
+  if (car_gazebo::Hub* h = car_gazebo::Hub::named(_name)) return h->world;
+  if (_name.empty()) gzerr << "no worlds\n";
+  gzerr << "Unable to find world by name in physics::get_world[" << _name << "]\n";
+  gzthrow("Unable to find world by name in physics::get_world(world_name)");
+}
+
+bool has_world(const std::string& _name) { return car_gazebo::Hub::named(_name) != nullptr; }
 
 }  // namespace physics
 }  // namespace gazebo

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <ostream>
+#include <string>
 
 namespace gazebo {
 namespace common {
@@ -47,6 +48,18 @@ class Time {
     _out << _time.sec << " " << _time.nsec;
     return _out;
   }
+
+  // The wall clock (CLOCK_REALTIME), as Gazebo 11's; a plug-in that reads it is not deterministic, in car as there.
+  static const Time& GetWallTime();
+  // Local wall time as "YYYY-MM-DDTHH:MM:SS.ffffff" (boost's to_iso_extended_string, as Gazebo 11's).
+  static const std::string& GetWallTimeAsISOString();
+  void SetToWallTime();
+  // Sleeps the calling thread for _time (CLOCK_MONOTONIC); returns what was left if interrupted, else zero. A time
+  // below the clock's resolution (zero, negative) does not sleep and logs "Sleep time is larger than clock
+  // resolution, skipping sleep" on gzlog, as Gazebo 11's.
+  static Time Sleep(const common::Time& _time);
+  static Time MSleep(unsigned int _ms);
+  static Time NSleep(unsigned int _ns);
 
   static const Time Zero;
   static const int32_t nsInSec;
