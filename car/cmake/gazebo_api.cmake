@@ -11,7 +11,12 @@ target_include_directories(car_gazebo PUBLIC include/gazebo_api ${Boost_INCLUDE_
 target_link_libraries(car_gazebo PUBLIC car_sim sdformat12::sdformat12 ignition-math6::ignition-math6)
 set_target_properties(car_gazebo PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
-install(TARGETS car_gazebo
+# Gazebo 11's plug-in base libraries that users link by name (target_link_libraries(x RayPlugin)), beside car_gazebo
+# in GAZEBO_LIBRARY_DIRS
+add_library(RayPlugin SHARED src/gazebo/plugins/RayPlugin.cc)
+target_link_libraries(RayPlugin PUBLIC car_gazebo)
+
+install(TARGETS car_gazebo RayPlugin
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
 install(DIRECTORY include/gazebo_api/ DESTINATION ${CATKIN_GLOBAL_INCLUDE_DESTINATION}/gazebo_api)
@@ -40,6 +45,12 @@ if(CATKIN_ENABLE_TESTING AND TARGET test_core)
       LIBRARY_OUTPUT_DIRECTORY ${_car_gz_plugins})
     add_dependencies(test_core car_gz_test_${_p})
   endforeach()
+  # a RayPlugin of ours, linked to the library RayPlugin as Gazebo users link it
+  add_library(car_gz_test_ray_plugin_probe MODULE EXCLUDE_FROM_ALL test/gazebo/plugins/ray_plugin_probe.cc)
+  target_link_libraries(car_gz_test_ray_plugin_probe car_gazebo RayPlugin)
+  set_target_properties(car_gz_test_ray_plugin_probe PROPERTIES OUTPUT_NAME ray_plugin_probe PREFIX "lib"
+    LIBRARY_OUTPUT_DIRECTORY ${_car_gz_plugins})
+  add_dependencies(test_core car_gz_test_ray_plugin_probe)
   # the model push plug-in under a file name car simulates natively, for the switch CAR_UPSTREAM_PLUGINS
   add_library(car_gz_test_native_name MODULE EXCLUDE_FROM_ALL test/gazebo/plugins/model_push.cc)
   target_link_libraries(car_gz_test_native_name car_gazebo)

@@ -148,6 +148,8 @@ class Hub : public std::enable_shared_from_this<Hub> {
   int subscribe(const std::string& topic, const std::string& type, Delivery cb, bool latching);
   void unsubscribe(int id);
   void publish(const std::string& topic, const std::string& type, boost::shared_ptr<const void> msg);
+  // whether a subscriber of that topic and type is present now (Gazebo's Publisher::HasConnections)
+  bool subscribed(const std::string& topic, const std::string& type) const;
 
  private:
   struct Subscription {

@@ -194,11 +194,54 @@ double RaySensor::Retro(const unsigned int _index) const {
   return retros[_index];
 }
 
+// As Gazebo 11's RaySensor::Topic: "~/" + parent + "/" + name + "/scan" with "::" as "/"
+std::string RaySensor::Topic() const {
+  std::string topic = "~/" + ParentName() + "/" + Name() + "/scan";
+  for (size_t at = topic.find("::"); at != std::string::npos; at = topic.find("::", at + 1)) topic.replace(at, 2, "/");
+  return topic;
+}
+
+namespace {
+const char* const kLaserScanStamped = "gazebo.msgs.LaserScanStamped";
+
+// The hub of the sensor's world and its topic there, decoded as transport::Node does ("~/" -> "/gazebo/WORLD/")
+std::pair<car_gazebo::Hub*, std::string> scan_topic(const RaySensor& _sensor) {
+  const std::string world = _sensor.WorldName();
+  return {car_gazebo::Hub::named(world), "/gazebo/" + world + "/" + _sensor.Topic().substr(2)};
+}
+}  // namespace
+
+bool RaySensor::IsActive() const {
+  if (Sensor::IsActive()) return true;
+  const auto [hub, topic] = scan_topic(*this);
+  return hub && hub->subscribed(topic, kLaserScanStamped);
+}
+
 void RaySensor::CarMeasure(const car_sim::Output* _sample) {
   const car_sim::LaserScanSample* s = _sample ? _sample->sample_of<car_sim::LaserScanSample>() : nullptr;
   if (!s) return;
   ranges.assign(s->ranges.begin(), s->ranges.end());
   retros.assign(s->intensities.begin(), s->intensities.end());
+  // Gazebo's RaySensor::UpdateImpl: the scan on its topic, while it has a subscriber
+  const auto [hub, topic] = scan_topic(*this);
+  if (!hub || !hub->subscribed(topic, kLaserScanStamped)) return;
+  auto msg = boost::make_shared<msgs::LaserScanStamped>();
+  msgs::Set(msg->mutable_time(), LastMeasurementTime());
+  msgs::LaserScan* scan = msg->mutable_scan();
+  scan->set_frame(ParentName());
+  scan->set_angle_min(AngleMin().Radian());
+  scan->set_angle_max(AngleMax().Radian());
+  scan->set_angle_step(AngleResolution());
+  scan->set_count(RangeCount());
+  scan->set_vertical_angle_min(VerticalAngleMin().Radian());
+  scan->set_vertical_angle_max(VerticalAngleMax().Radian());
+  scan->set_vertical_angle_step(VerticalAngleResolution());
+  scan->set_vertical_count(VerticalRangeCount());
+  scan->set_range_min(RangeMin());
+  scan->set_range_max(RangeMax());
+  for (double r : ranges) scan->add_ranges(r);
+  for (double i : retros) scan->add_intensities(i);
+  hub->publish(topic, kLaserScanStamped, msg);
 }
 
 // ---- ImuSensor: car's imu_sensor kind's ImuSample ----

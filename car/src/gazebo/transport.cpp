@@ -1,4 +1,4 @@
-// car's Gazebo 11 API: transport within one world, for the messages car carries (msgs::Vector3d, msgs::ImageStamped):
+// car's Gazebo 11 API: transport within one world, for the messages car carries (Vector3d, ImageStamped, LaserScanStamped):
 // Subscriber, Node::Subscribe, Advertise and Publisher::Publish of each, and the hub's delivery (docs/PLUGINS.md
 // "Transport").
 // Gazebo's transport hands a message to its subscribers on its own threads, some time after Publish; car delivers at
@@ -46,6 +46,12 @@ void Hub::publish(const std::string& topic, const std::string& type, boost::shar
   });
 }
 
+bool Hub::subscribed(const std::string& topic, const std::string& type) const {
+  for (const auto& s : subscriptions_)
+    if (s.topic == topic && s.type == type) return true;
+  return false;
+}
+
 void Hub::deliver(const std::vector<int>& ids, const boost::shared_ptr<const void>& msg) {
   CurrentHub in(this);
   for (int id : ids) {
@@ -83,6 +89,10 @@ const char* type_name<msgs::Vector3d>() {
 template <>
 const char* type_name<msgs::ImageStamped>() {
   return "gazebo.msgs.ImageStamped";
+}
+template <>
+const char* type_name<msgs::LaserScanStamped>() {
+  return "gazebo.msgs.LaserScanStamped";
 }
 
 // Node::Advertise, Publisher::Publish and Node::Subscribe for a message M that car carries
@@ -136,6 +146,23 @@ SubscriberPtr Node::SubscribeCallback<msgs::Vector3d>(
     const std::string& _topic, std::function<void(const boost::shared_ptr<msgs::Vector3d const>&)> _cb,
     bool _latching) {
   return subscribe<msgs::Vector3d>(*this, _topic, std::move(_cb), _latching);
+}
+
+template <>
+PublisherPtr Node::Advertise<msgs::LaserScanStamped>(const std::string& _topic, unsigned int, double) {
+  return advertise<msgs::LaserScanStamped>(*this, _topic);
+}
+
+template <>
+void Publisher::Publish<msgs::LaserScanStamped>(const msgs::LaserScanStamped& _message, bool) {
+  publish(this->world, this->topic, _message);
+}
+
+template <>
+SubscriberPtr Node::SubscribeCallback<msgs::LaserScanStamped>(
+    const std::string& _topic, std::function<void(const boost::shared_ptr<msgs::LaserScanStamped const>&)> _cb,
+    bool _latching) {
+  return subscribe<msgs::LaserScanStamped>(*this, _topic, std::move(_cb), _latching);
 }
 
 template <>

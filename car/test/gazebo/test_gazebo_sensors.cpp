@@ -94,7 +94,7 @@ std::vector<std::string> diags(const World& w, const std::string& code) {
 }  // namespace
 
 // The sensor at (0.15, 0, 0.5), facing +x: the middle beam (angle 0) meets the wall's face at 1.9 - 0.15 = 1.75 m;
-// the side beams (+-0.1 rad) at 1.75 / cos(0.1) = 1.758753 m (their y = 1.75 tan 0.1 = 0.1756 m is on the wall).
+// the side beams (+-0.1 rad) at 1.75 / cos(0.1) = 1.758787 m (their y = 1.75 tan 0.1 = 0.1756 m is on the wall).
 TEST_F(GazeboSensors, RaySensorPluginReadsTheRangesToAWall) {
   World w(wall_world());
   w.spawn(load_urdf_string(box(ray_sensor()), "box"), "box", translated(0, 0, 0.5));
@@ -337,4 +337,79 @@ TEST_F(GazeboSensors, ASensorGoesWithItsModel) {
   ASSERT_NE(h, nullptr);
   EXPECT_EQ(std::string(reinterpret_cast<const char* (*)()>(dlsym(h, "car_test_finder_log"))()), "model=box front=none ");
   dlclose(h);
+}
+
+// ---- RayPlugin and the scan topic (test/gazebo/plugins/ray_plugin_probe.cc, written as gazebo_ros_laser is) ---------
+
+namespace {
+
+// What the RayPlugin probe logged since the last call, and its OnNewLaserScans calls.
+std::string ray_plugin_log() {
+  void* h = dlopen((kDir + "/libray_plugin_probe.so").c_str(), RTLD_LAZY | RTLD_NOLOAD);
+  if (!h) return "<not loaded>";
+  const std::string s = reinterpret_cast<const char* (*)()>(dlsym(h, "car_test_ray_plugin_probe_log"))();
+  dlclose(h);
+  return s;
+}
+
+int ray_plugin_scans() {
+  void* h = dlopen((kDir + "/libray_plugin_probe.so").c_str(), RTLD_LAZY | RTLD_NOLOAD);
+  if (!h) return -1;
+  const int n = reinterpret_cast<int (*)()>(dlsym(h, "car_test_ray_plugin_probe_scans"))();
+  dlclose(h);
+  return n;
+}
+
+// The box with the 3-beam sensor "front" and the RayPlugin probe, at (0, 0, 0.5) before the wall.
+std::unique_ptr<World> ray_plugin_box() {
+  ray_plugin_log();
+  ray_plugin_scans();
+  auto w = std::make_unique<World>(wall_world());
+  w->spawn(load_urdf_string(box(ray_sensor("front", "", "", "libray_plugin_probe.so")), "box"), "box",
+           translated(0, 0, 0.5));
+  return w;
+}
+
+}  // namespace
+
+// Gazebo 11's RaySensor::Topic: "~/" + parent ("box::base") + "/" + name + "/scan", "::" as "/".
+TEST_F(GazeboSensors, RaySensorTopicIsItsParentAndNameWithSlashes) {
+  auto w = ray_plugin_box();
+  EXPECT_EQ(ray_plugin_log(), "topic=~/box/base/front/scan ");
+}
+
+// The probe switches its sensor off, as gazebo_ros_laser does, and subscribes to its topic: the subscription keeps
+// it measuring (Gazebo's RaySensor::IsActive), at its 10 Hz: 10 scans in 1 s, and OnNewLaserScans after each.
+TEST_F(GazeboSensors, ARaySensorMeasuresWhileItsTopicHasASubscriber) {
+  auto w = ray_plugin_box();
+  ray_plugin_log();
+  w->step(1000);
+  const std::string log = ray_plugin_log();
+  size_t n = 0;
+  for (size_t at = log.find("scan@"); at != std::string::npos; at = log.find("scan@", at + 1)) ++n;
+  EXPECT_EQ(n, 10u) << log;
+  EXPECT_EQ(ray_plugin_scans(), 10);
+}
+
+// The first scan, at 0.1 s: the sensor's parent as frame, its 3 beams over [-0.1, 0.1] rad, range [0.05, 10] m, and
+// the ranges to the wall (1.75 / cos(0.1) = 1.758787, 1.75, 1.758787 m; printed to 6 digits).
+TEST_F(GazeboSensors, TheScanMessageHoldsTheSensorsScan) {
+  auto w = ray_plugin_box();
+  ray_plugin_log();
+  w->step(100);
+  EXPECT_EQ(ray_plugin_log(),
+            "scan@0.100000000 frame=box::base count=3 min=-0.1 step=0.1 range=0.05..10 ranges=1.75879,1.75,1.75879 ");
+}
+
+// A RayPlugin in a sensor that is not a ray sensor: Gazebo's gzthrow, and the plug-in is left out.
+TEST_F(GazeboSensors, ARayPluginOnAnotherSensorIsRefused) {
+  World w(wall_world());
+  testing::internal::CaptureStderr();
+  w.spawn(load_urdf_string(box(R"(<sensor type="imu" name="imu"><update_rate>10</update_rate>
+      <plugin name="probe" filename="libray_plugin_probe.so"/></sensor>)"), "box"), "box", translated(0, 0, 0.5));
+  testing::internal::GetCapturedStderr();
+  EXPECT_EQ(diags(w, "plugin-not-loaded"),
+            std::vector<std::string>{"sensor[imu]/plugin[probe]: plug-in 'probe' of model 'box' failed to load: Load "
+                                     "threw: RayPlugin requires a Ray Sensor as its parent; the model goes on without "
+                                     "it"});
 }

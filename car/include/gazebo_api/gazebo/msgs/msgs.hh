@@ -1,6 +1,7 @@
 // car's Gazebo 11 API (docs/PLUGINS.md): #include <gazebo/msgs/msgs.hh>, the messages car offers as plain classes
 // with protobuf's accessors (not protobuf): msgs::Factory (a model to insert, Gazebo's ~/factory topic) with
 // msgs::Pose, the contact messages a ContactSensor gives (contact.pb.h, ...), msgs::ImageStamped with msgs::Image,
+// msgs::LaserScanStamped with msgs::LaserScan (a ray sensor's scans on its topic),
 // and the conversions to ignition-math and common::Time.
 // The other messages are not declared.
 #pragma once
@@ -16,6 +17,8 @@
 #include "gazebo/msgs/image_stamped.pb.h"
 #include "gazebo/msgs/MessageTypes.hh"
 #include "gazebo/msgs/joint_wrench.pb.h"
+#include "gazebo/msgs/laserscan.pb.h"
+#include "gazebo/msgs/laserscan_stamped.pb.h"
 #include "gazebo/msgs/time.pb.h"
 #include "gazebo/msgs/vector3d.pb.h"
 #include "gazebo/msgs/wrench.pb.h"

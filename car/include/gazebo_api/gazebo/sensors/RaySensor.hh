@@ -35,6 +35,11 @@ class RaySensor : public Sensor {
   void Ranges(std::vector<double>& _ranges) const;
   // The hit surface's <laser_retro> (car's laser intensities).
   double Retro(const unsigned int _index) const;
+  // Gazebo's transport topic of its scans (msgs::LaserScanStamped): "~/MODEL/LINK/SENSOR/scan" ("::" as "/"); each
+  // measurement is published there while it has a subscriber.
+  std::string Topic() const;
+  // Active while SetActive(true) holds, or while its topic has a subscriber, as Gazebo 11's RaySensor.
+  bool IsActive() const override;
 
  protected:
   void CarMeasure(const car_sim::Output* _sample) override;

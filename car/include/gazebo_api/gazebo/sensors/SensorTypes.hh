@@ -22,6 +22,14 @@ typedef std::shared_ptr<ImuSensor> ImuSensorPtr;
 typedef std::shared_ptr<CameraSensor> CameraSensorPtr;
 typedef std::shared_ptr<DepthCameraSensor> DepthCameraSensorPtr;
 typedef std::vector<SensorPtr> Sensor_V;
+}  // namespace sensors
+}  // namespace gazebo
+
+// Gazebo 11's: lets a plug-in write dynamic_pointer_cast<sensors::RaySensor>(_parent) unqualified
+#define GAZEBO_SENSORS_USING_DYNAMIC_POINTER_CAST using std::dynamic_pointer_cast
+
+namespace gazebo {
+namespace sensors {
 
 }  // namespace sensors
 }  // namespace gazebo

@@ -1,6 +1,7 @@
 // car's Gazebo 11 API (docs/PLUGINS.md "Transport"): transport::Node, as far as the factory and velodyne tutorials and
 // camera plug-ins use it: Init with a world's name; Advertise<msgs::Factory> on ~/factory, which inserts models into
-// that world; and Advertise and Subscribe for msgs::Vector3d and msgs::ImageStamped on any topic, within this
+// that world; and Advertise and Subscribe for msgs::Vector3d, msgs::ImageStamped and msgs::LaserScanStamped (a ray
+// sensor's scans) on any topic, within this
 // process. car has no Gazebo transport between processes: other message types fail to link.
 #pragma once
 
@@ -32,12 +33,12 @@ class Node : public boost::enable_shared_from_this<Node> {
   // "~/x" -> "/gazebo/<namespace>/x"; other names as they are.
   std::string DecodeTopicName(const std::string& _topic);
   // Offered for M = msgs::Factory on "~/factory" (or "/gazebo/<namespace>/factory") only: another topic throws
-  // std::invalid_argument naming it; and for M = msgs::Vector3d and msgs::ImageStamped on any topic ("~/" decoded as
+  // std::invalid_argument naming it; and for M = msgs::Vector3d, ImageStamped and LaserScanStamped on any topic ("~/" decoded as
   // above); _queueLimit and _hzRate have no effect.
   template <typename M>
   PublisherPtr Advertise(const std::string& _topic, unsigned int _queueLimit = 1000, double _hzRate = 0);
 
-  // Offered for M = msgs::Vector3d and msgs::ImageStamped: the callback gets each message published on the topic in this node's world by
+  // Offered for M = msgs::Vector3d, ImageStamped and LaserScanStamped: the callback gets each message published on the topic in this node's world by
   // the subscribers present at Publish, at the delivery point: the end of the step it was published in (after the
   // sensors), or the node's next turn while paused; never inside Publish. _latching: the topic's last message, if
   // any, comes at the next delivery point too.
@@ -69,6 +70,13 @@ PublisherPtr Node::Advertise<msgs::Vector3d>(const std::string& _topic, unsigned
 template <>
 SubscriberPtr Node::SubscribeCallback<msgs::Vector3d>(
     const std::string& _topic, std::function<void(const boost::shared_ptr<msgs::Vector3d const>&)> _cb, bool _latching);
+template <>
+PublisherPtr Node::Advertise<msgs::LaserScanStamped>(const std::string& _topic, unsigned int _queueLimit,
+                                                     double _hzRate);
+template <>
+SubscriberPtr Node::SubscribeCallback<msgs::LaserScanStamped>(
+    const std::string& _topic, std::function<void(const boost::shared_ptr<msgs::LaserScanStamped const>&)> _cb,
+    bool _latching);
 template <>
 PublisherPtr Node::Advertise<msgs::ImageStamped>(const std::string& _topic, unsigned int _queueLimit, double _hzRate);
 template <>

@@ -32,6 +32,8 @@ template <>
 void Publisher::Publish<msgs::Vector3d>(const msgs::Vector3d& _message, bool _block);
 template <>
 void Publisher::Publish<msgs::ImageStamped>(const msgs::ImageStamped& _message, bool _block);
+template <>
+void Publisher::Publish<msgs::LaserScanStamped>(const msgs::LaserScanStamped& _message, bool _block);
 
 }  // namespace transport
 }  // namespace gazebo
