@@ -13,10 +13,12 @@ set_target_properties(car_gazebo PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
 # Gazebo 11's plug-in base libraries that users link by name (target_link_libraries(x RayPlugin)), beside car_gazebo
 # in GAZEBO_LIBRARY_DIRS
-add_library(RayPlugin SHARED src/gazebo/plugins/RayPlugin.cc)
-target_link_libraries(RayPlugin PUBLIC car_gazebo)
+foreach(_base RayPlugin CameraPlugin DepthCameraPlugin)
+  add_library(${_base} SHARED src/gazebo/plugins/${_base}.cc)
+  target_link_libraries(${_base} PUBLIC car_gazebo)
+endforeach()
 
-install(TARGETS car_gazebo RayPlugin
+install(TARGETS car_gazebo RayPlugin CameraPlugin DepthCameraPlugin
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
 install(DIRECTORY include/gazebo_api/ DESTINATION ${CATKIN_GLOBAL_INCLUDE_DESTINATION}/gazebo_api)
@@ -45,12 +47,18 @@ if(CATKIN_ENABLE_TESTING AND TARGET test_core)
       LIBRARY_OUTPUT_DIRECTORY ${_car_gz_plugins})
     add_dependencies(test_core car_gz_test_${_p})
   endforeach()
-  # a RayPlugin of ours, linked to the library RayPlugin as Gazebo users link it
-  add_library(car_gz_test_ray_plugin_probe MODULE EXCLUDE_FROM_ALL test/gazebo/plugins/ray_plugin_probe.cc)
-  target_link_libraries(car_gz_test_ray_plugin_probe car_gazebo RayPlugin)
-  set_target_properties(car_gz_test_ray_plugin_probe PROPERTIES OUTPUT_NAME ray_plugin_probe PREFIX "lib"
-    LIBRARY_OUTPUT_DIRECTORY ${_car_gz_plugins})
-  add_dependencies(test_core car_gz_test_ray_plugin_probe)
+  # a RayPlugin, a CameraPlugin and a DepthCameraPlugin of ours, each linked to its base's library as Gazebo users
+  # link it
+  foreach(_pair ray:RayPlugin camera:CameraPlugin depth_camera:DepthCameraPlugin)
+    string(REPLACE ":" ";" _pair ${_pair})
+    list(GET _pair 0 _probe)
+    list(GET _pair 1 _base)
+    add_library(car_gz_test_${_probe}_plugin_probe MODULE EXCLUDE_FROM_ALL test/gazebo/plugins/${_probe}_plugin_probe.cc)
+    target_link_libraries(car_gz_test_${_probe}_plugin_probe car_gazebo ${_base})
+    set_target_properties(car_gz_test_${_probe}_plugin_probe PROPERTIES OUTPUT_NAME ${_probe}_plugin_probe PREFIX "lib"
+      LIBRARY_OUTPUT_DIRECTORY ${_car_gz_plugins})
+    add_dependencies(test_core car_gz_test_${_probe}_plugin_probe)
+  endforeach()
   # the model push plug-in under a file name car simulates natively, for the switch CAR_UPSTREAM_PLUGINS
   add_library(car_gz_test_native_name MODULE EXCLUDE_FROM_ALL test/gazebo/plugins/model_push.cc)
   target_link_libraries(car_gz_test_native_name car_gazebo)

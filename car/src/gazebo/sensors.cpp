@@ -345,8 +345,9 @@ rendering::DepthCameraPtr DepthCameraSensor::DepthCamera() const { return depthC
 void DepthCameraSensor::CarMeasure(const car_sim::Output* _sample) {
   const std::optional<car_sim::ImageSample> s = _sample ? _sample->sample_of<car_sim::ImageSample>() : std::nullopt;
   if (!s) return;
-  if (s->image) depthCamera->CarFrame(s->image, s->image_bytes);
+  // Gazebo 11's DepthCamera::PostRender: the depth frame's event first, then Camera::PostRender's image frame
   if (s->depth) depthCamera->CarDepthFrame(s->depth);
+  if (s->image) depthCamera->CarFrame(s->image, s->image_bytes);
 }
 
 }  // namespace sensors
@@ -411,6 +412,20 @@ event::ConnectionPtr DepthCamera::ConnectNewDepthFrame(
   return boost::make_shared<event::Connection>([weak, id] {
     if (auto e = weak.lock()) e->depth.disconnect(id);
   });
+}
+
+// never fired: a connection that holds nothing
+event::ConnectionPtr DepthCamera::ConnectNewRGBPointCloud(
+    std::function<void(const float*, unsigned int, unsigned int, unsigned int, const std::string&)>) {
+  return boost::make_shared<event::Connection>([] {});
+}
+event::ConnectionPtr DepthCamera::ConnectNewReflectanceFrame(
+    std::function<void(const float*, unsigned int, unsigned int, unsigned int, const std::string&)>) {
+  return boost::make_shared<event::Connection>([] {});
+}
+event::ConnectionPtr DepthCamera::ConnectNewNormalsPointCloud(
+    std::function<void(const float*, unsigned int, unsigned int, unsigned int, const std::string&)>) {
+  return boost::make_shared<event::Connection>([] {});
 }
 
 void DepthCamera::CarDepthFrame(const float* _depth) {

@@ -413,3 +413,65 @@ TEST_F(GazeboSensors, ARayPluginOnAnotherSensorIsRefused) {
                                      "threw: RayPlugin requires a Ray Sensor as its parent; the model goes on without "
                                      "it"});
 }
+
+// ---- CameraPlugin and DepthCameraPlugin (test/gazebo/plugins/camera_plugin_probe.cc, depth_camera_plugin_probe.cc) ---
+
+namespace {
+
+// What the probe lib<name>.so logged since the last call (its car_test_<name>_log).
+std::string probe_log(const std::string& name) {
+  void* h = dlopen((kDir + "/lib" + name + ".so").c_str(), RTLD_LAZY | RTLD_NOLOAD);
+  if (!h) return "<not loaded>";
+  const std::string s = reinterpret_cast<const char* (*)()>(dlsym(h, ("car_test_" + name + "_log").c_str()))();
+  dlclose(h);
+  return s;
+}
+
+}  // namespace
+
+// An 8 x 6 R8G8B8 camera looking down into the empty blue background: Load reads the camera's size, 3 bytes per
+// pixel and format and activates the sensor; at 10 Hz the first frame comes at 0.1 s, blue at its centre.
+TEST_F(GazeboSensors, CameraPluginGetsItsCameraAndItsFrames) {
+  probe_log("camera_plugin_probe");
+  World w(wall_world("0 0 1 1"));
+  const std::string cam = R"(<sensor type="camera" name="cam"><update_rate>10</update_rate><pose>0 0 0 0 -1.5707963 0</pose>
+      <camera><horizontal_fov>1.0</horizontal_fov><image><width>8</width><height>6</height><format>R8G8B8</format></image>
+        <clip><near>0.1</near><far>100</far></clip></camera>
+      <plugin name="probe" filename="libcamera_plugin_probe.so"/></sensor>)";
+  w.spawn(load_urdf_string(box(cam), "box"), "box", translated(0, 0, 0.5));
+  w.step(100);
+  EXPECT_EQ(probe_log("camera_plugin_probe"), "load 8x6 depth=3 format=R8G8B8 active=1 frame 8x6 centre=0,0,255 ");
+}
+
+// A 9 x 7 depth camera facing the wall's face 1.9 m ahead: the depth frame ("FLOAT32") reads 1.9 m at its centre,
+// then the colour frame comes (Gazebo 11's DepthCamera::PostRender order); the base class's own OnNewDepthFrame prints upstream's line, whose "MidPoint" is
+// upstream's index ((7 * 0.5) * 9 + 9 * 0.5 = 36: row 4, column 0), on the wall too.
+TEST_F(GazeboSensors, DepthCameraPluginGetsTheDepthAndTheColourFrames) {
+  probe_log("depth_camera_plugin_probe");
+  World w(wall_world());
+  const std::string cam = R"(<sensor type="depth" name="depth"><update_rate>10</update_rate>
+      <camera><horizontal_fov>1.0</horizontal_fov><image><width>9</width><height>7</height></image>
+        <clip><near>0.1</near><far>100</far></clip></camera>
+      <plugin name="probe" filename="libdepth_camera_plugin_probe.so"/></sensor>)";
+  w.spawn(load_urdf_string(box(cam), "box"), "box", translated(0, 0, 0.5));
+  testing::internal::CaptureStdout();
+  w.step(100);
+  const std::string out = testing::internal::GetCapturedStdout();
+  EXPECT_EQ(probe_log("depth_camera_plugin_probe"), "load 9x7 active=1 depth 9x7 format=FLOAT32 centre=1.9 image 9x7 ");
+  EXPECT_NE(out.find("W[9] H[7] MidPoint[36] Dist[1.900000]"), std::string::npos) << out;
+}
+
+// A CameraPlugin in a ray sensor: upstream's two messages, and it does nothing (Gazebo 11 goes on to read the camera
+// of no sensor and crashes).
+TEST_F(GazeboSensors, ACameraPluginOnARaySensorSaysSoAndDoesNothing) {
+  probe_log("camera_plugin_probe");
+  World w(wall_world());
+  testing::internal::CaptureStderr();
+  w.spawn(load_urdf_string(box(ray_sensor("front", "", "", "libcamera_plugin_probe.so")), "box"), "box",
+          translated(0, 0, 0.5));
+  w.step(100);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("CameraPlugin requires a CameraSensor.\n"), std::string::npos) << err;
+  EXPECT_NE(err.find("CameraPlugin not attached to a camera sensor\n"), std::string::npos) << err;
+  EXPECT_EQ(probe_log("camera_plugin_probe"), "");
+}

@@ -21,6 +21,14 @@ class DepthCamera : public Camera {
   event::ConnectionPtr ConnectNewDepthFrame(
       std::function<void(const float*, unsigned int, unsigned int, unsigned int, const std::string&)> _subscriber);
 
+  // Gazebo's events of the depth camera's point cloud, reflectance and normals: car's depth camera renders none of
+  // them, so these never fire (DepthCameraPlugin connects them; docs/PLUGINS.md "Sensor plug-in bases").
+  event::ConnectionPtr ConnectNewRGBPointCloud(
+      std::function<void(const float*, unsigned int, unsigned int, unsigned int, const std::string&)> _subscriber);
+  event::ConnectionPtr ConnectNewReflectanceFrame(
+      std::function<void(const float*, unsigned int, unsigned int, unsigned int, const std::string&)> _subscriber);
+  event::ConnectionPtr ConnectNewNormalsPointCloud(
+      std::function<void(const float*, unsigned int, unsigned int, unsigned int, const std::string&)> _subscriber);
   // car: a new depth frame: copied, the event raised.
   void CarDepthFrame(const float* _depth);
 
