@@ -30,14 +30,8 @@ ROOT=$(cd "$(dirname "$0")/.." && pwd)
 TOOL=kobuki
 # shellcheck source=tools/mirror_ws.sh
 source "$ROOT/tools/mirror_ws.sh"
-missing=""
-[ -f /usr/include/urdf/model.h ] || missing+=" liburdf-dev"
-[ -f /usr/include/tf/transform_broadcaster.h ] || missing+=" libtf-dev"
-if [ -n "$missing" ]; then
-  echo "kobuki: kobuki_description and kobuki_gazebo_plugins need Debian packages that are not installed:$missing" >&2
-  echo "kobuki: apt-get install$missing" >&2
-  exit 2
-fi
+require_debs "kobuki_description and kobuki_gazebo_plugins" urdf/model.h:liburdf-dev \
+  tf/transform_broadcaster.h:libtf-dev
 mirror_ws_begin
 
 export_from yujinrobot+kobuki_desktop melodic "$SRC" kobuki_gazebo kobuki_gazebo_plugins

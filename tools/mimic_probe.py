@@ -83,8 +83,4 @@ def main():
 
 
 if __name__ == "__main__":
-    try:
-        main()
-    finally:
-        print("\n".join(results.lines))
-    sys.exit(0 if results.all_ok() else 1)
+    probe_util.run(main, results)

@@ -3,6 +3,21 @@
 # snapshot into it, its build, and one run of a launch file with a probe beside it on a fresh master.
 # The caller sets TOOL (its name, for messages), MIRROR (the folder of OWNER+NAME snapshots) and ROOT (car's root).
 
+# require_debs WHO HEADER:PACKAGE...: stops, naming the Debian packages to install, unless each HEADER (a path under
+# /usr/include) is there; WHO says what needs them.
+require_debs() {
+  local who=$1 missing="" pair
+  shift
+  for pair in "$@"; do
+    [ -f "/usr/include/${pair%%:*}" ] || missing+=" ${pair#*:}"
+  done
+  if [ -n "$missing" ]; then
+    echo "$TOOL: $who need(s) Debian packages that are not installed:$missing" >&2
+    echo "$TOOL: apt-get install$missing" >&2
+    exit 2
+  fi
+}
+
 # mirror_ws_begin: stops unless car's workspace is sourced; makes WS=/tmp/car_TOOL.XXXXXX with WS/src as SRC.
 mirror_ws_begin() {
   if [ -z "${CMAKE_PREFIX_PATH:-}" ] || ! rospack find car > /dev/null 2>&1; then

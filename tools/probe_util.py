@@ -19,6 +19,15 @@ def wait_until(tool, what, cond, sim_s, wall_s=120.0):
     return cond()
 
 
+def run(main, results):
+    """Runs main(), prints the result lines whatever happened, and exits 0 when every check passed."""
+    try:
+        main()
+    finally:
+        print("\n".join(results.lines))
+    sys.exit(0 if results.all_ok() else 1)
+
+
 class Results:
     """The checks' lines, in order."""
 

@@ -30,14 +30,8 @@ ROOT=$(cd "$(dirname "$0")/.." && pwd)
 TOOL=realsense
 # shellcheck source=tools/mirror_ws.sh
 source "$ROOT/tools/mirror_ws.sh"
-missing=""
-[ -f /usr/include/image_transport/image_transport.h ] || missing+=" libimage-transport-dev"
-[ -f /usr/include/camera_info_manager/camera_info_manager.h ] || missing+=" libcamera-info-manager-dev"
-if [ -n "$missing" ]; then
-  echo "realsense: realsense_gazebo_plugin needs Debian packages that are not installed:$missing" >&2
-  echo "realsense: apt-get install$missing" >&2
-  exit 2
-fi
+require_debs realsense_gazebo_plugin image_transport/image_transport.h:libimage-transport-dev \
+  camera_info_manager/camera_info_manager.h:libcamera-info-manager-dev
 mirror_ws_begin
 export_from pal-robotics+realsense_gazebo_plugin melodic-devel "$SRC/realsense_gazebo_plugin" .
 export_from pal-robotics-forks+realsense melodic-devel "$SRC" realsense2_description

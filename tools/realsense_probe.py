@@ -13,7 +13,6 @@ centre 11 x 11 pixels (121) has a spread of about 1.25 x 0.1 / 11 = 0.011 m, so 
 """
 import array
 import math
-import sys
 
 import rospy
 from gazebo_msgs.msg import ModelStates
@@ -97,8 +96,4 @@ def main():
 
 
 if __name__ == "__main__":
-    try:
-        main()
-    finally:
-        print("\n".join(results.lines))
-    sys.exit(0 if results.all_ok() else 1)
+    probe_util.run(main, results)

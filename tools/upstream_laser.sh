@@ -18,7 +18,7 @@ ROOT=$(cd "$(dirname "$0")/.." && pwd)
 TOOL=upstream_laser
 # shellcheck source=tools/mirror_ws.sh
 source "$ROOT/tools/mirror_ws.sh"
-[ -f /usr/include/tf/tf.h ] || { echo "upstream_laser: gazebo_ros_laser.cpp needs Debian's libtf-dev" >&2; exit 2; }
+require_debs gazebo_ros_laser.cpp tf/tf.h:libtf-dev
 mirror_ws_begin
 UP=$WS/upstream
 mkdir -p "$UP"

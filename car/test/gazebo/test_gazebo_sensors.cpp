@@ -84,6 +84,22 @@ std::string ray_sensor(const std::string& name = "front", const std::string& ext
       <plugin name="probe" filename=")" + filename + R"(">)" + extra + R"(</plugin></sensor>)";
 }
 
+// An 8 x 6 R8G8B8 camera "cam" at 10 Hz looking straight down (pitch -90 deg), hfov 1 rad, with the plug-in `filename`.
+std::string down_camera(const std::string& filename) {
+  return R"(<sensor type="camera" name="cam"><update_rate>10</update_rate><pose>0 0 0 0 -1.5707963 0</pose>
+      <camera><horizontal_fov>1.0</horizontal_fov><image><width>8</width><height>6</height><format>R8G8B8</format></image>
+        <clip><near>0.1</near><far>100</far></clip></camera>
+      <plugin name="probe" filename=")" + filename + R"("/></sensor>)";
+}
+
+// A 9 x 7 depth camera "depth" at 10 Hz facing +x, hfov 1 rad, with the plug-in `filename`.
+std::string depth_camera(const std::string& filename) {
+  return R"(<sensor type="depth" name="depth"><update_rate>10</update_rate>
+      <camera><horizontal_fov>1.0</horizontal_fov><image><width>9</width><height>7</height></image>
+        <clip><near>0.1</near><far>100</far></clip></camera>
+      <plugin name="probe" filename=")" + filename + R"("/></sensor>)";
+}
+
 std::vector<std::string> diags(const World& w, const std::string& code) {
   std::vector<std::string> out;
   for (const auto& d : w.robot("box").config.diagnostics)
@@ -244,10 +260,7 @@ TEST_F(GazeboSensors, ImuSensorAtRestReadsPlusGOnZ) {
 // r g b = (0, 0, 255) (each channel times 255). The frame event gives the size and 3 bytes a pixel (R8G8B8).
 TEST_F(GazeboSensors, CameraFrameHasItsSizeAndTheBackground) {
   World w(wall_world("0 0 1 1"));
-  const std::string cam = R"(<sensor type="camera" name="cam"><update_rate>10</update_rate><pose>0 0 0 0 -1.5707963 0</pose>
-      <camera><horizontal_fov>1.0</horizontal_fov><image><width>8</width><height>6</height><format>R8G8B8</format></image>
-        <clip><near>0.1</near><far>100</far></clip></camera>
-      <plugin name="probe" filename="libsensor_probe.so"/></sensor>)";
+  const std::string cam = down_camera("libsensor_probe.so");
   w.spawn(load_urdf_string(box(cam), "box"), "box", translated(0, 0, 0.5));
   w.step(100);
   EXPECT_EQ(probe("cam/width"), 8);
@@ -263,10 +276,7 @@ TEST_F(GazeboSensors, CameraFrameHasItsSizeAndTheBackground) {
 // A depth camera facing the wall from (0, 0, 0.5): the centre pixel's depth along the optical axis is 1.9 m.
 TEST_F(GazeboSensors, DepthCameraGivesTheDepthOfTheWall) {
   World w(wall_world());
-  const std::string cam = R"(<sensor type="depth" name="depth"><update_rate>10</update_rate>
-      <camera><horizontal_fov>1.0</horizontal_fov><image><width>9</width><height>7</height></image>
-        <clip><near>0.1</near><far>100</far></clip></camera>
-      <plugin name="probe" filename="libsensor_probe.so"/></sensor>)";
+  const std::string cam = depth_camera("libsensor_probe.so");
   w.spawn(load_urdf_string(box(cam), "box"), "box", translated(0, 0, 0.5));
   w.step(100);
   EXPECT_NEAR(probe("depth/centre_depth"), 1.9, 1e-5);
@@ -434,10 +444,7 @@ std::string probe_log(const std::string& name) {
 TEST_F(GazeboSensors, CameraPluginGetsItsCameraAndItsFrames) {
   probe_log("camera_plugin_probe");
   World w(wall_world("0 0 1 1"));
-  const std::string cam = R"(<sensor type="camera" name="cam"><update_rate>10</update_rate><pose>0 0 0 0 -1.5707963 0</pose>
-      <camera><horizontal_fov>1.0</horizontal_fov><image><width>8</width><height>6</height><format>R8G8B8</format></image>
-        <clip><near>0.1</near><far>100</far></clip></camera>
-      <plugin name="probe" filename="libcamera_plugin_probe.so"/></sensor>)";
+  const std::string cam = down_camera("libcamera_plugin_probe.so");
   w.spawn(load_urdf_string(box(cam), "box"), "box", translated(0, 0, 0.5));
   w.step(100);
   EXPECT_EQ(probe_log("camera_plugin_probe"), "load 8x6 depth=3 format=R8G8B8 active=1 frame 8x6 centre=0,0,255 ");
@@ -449,10 +456,7 @@ TEST_F(GazeboSensors, CameraPluginGetsItsCameraAndItsFrames) {
 TEST_F(GazeboSensors, DepthCameraPluginGetsTheDepthAndTheColourFrames) {
   probe_log("depth_camera_plugin_probe");
   World w(wall_world());
-  const std::string cam = R"(<sensor type="depth" name="depth"><update_rate>10</update_rate>
-      <camera><horizontal_fov>1.0</horizontal_fov><image><width>9</width><height>7</height></image>
-        <clip><near>0.1</near><far>100</far></clip></camera>
-      <plugin name="probe" filename="libdepth_camera_plugin_probe.so"/></sensor>)";
+  const std::string cam = depth_camera("libdepth_camera_plugin_probe.so");
   w.spawn(load_urdf_string(box(cam), "box"), "box", translated(0, 0, 0.5));
   testing::internal::CaptureStdout();
   w.step(100);
