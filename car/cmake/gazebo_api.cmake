@@ -40,7 +40,7 @@ if(CATKIN_ENABLE_TESTING AND TARGET test_core)
   set(_car_gz_plugins ${CMAKE_CURRENT_BINARY_DIR}/gazebo_test_plugins)
   foreach(_p hello_world model_push parameters velocity_pid throws_in_load forces motion world_hello world_factory
            world_events world_parameters system_args sensor_probe sensor_finder entity
-           transport_probe time_reset link_enabled camera_transport free_functions)
+           transport_probe time_reset link_enabled camera_transport free_functions joint_list)
     add_library(car_gz_test_${_p} MODULE EXCLUDE_FROM_ALL test/gazebo/plugins/${_p}.cc)
     target_link_libraries(car_gz_test_${_p} car_gazebo)
     set_target_properties(car_gz_test_${_p} PROPERTIES OUTPUT_NAME ${_p} PREFIX "lib"

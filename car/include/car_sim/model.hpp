@@ -115,6 +115,9 @@ struct Joint {
   Eigen::Vector3d axis_as_written = Eigen::Vector3d::UnitX();
   std::optional<JointLimits> limits;
   double damping = 0.0, friction = 0.0;
+  // car's own: a fixed joint from `world` that anchors a static SDF model's link (Gazebo has no such joint; its
+  // static links are not simulated), left out of what Gazebo's API and gazebo_ros list
+  bool anchor = false;
 };
 
 // A <plugin> element: its name, file name and parameters as written.
@@ -189,6 +192,7 @@ struct RobotModel {
   std::vector<DroppedLink> dropped;
   std::set<std::string> preserved_fixed_joints;  // <gazebo reference=J><preserveFixedJoint> (or disable...)
   std::vector<std::string> world_joints;         // joints from the link `world`: the model is anchored
+  bool is_static = false;                        // an SDF model's <static>true (Gazebo's Model::IsStatic)
   std::vector<Transmission> transmissions;       // URDF <transmission>s, as written (ros_control)
   // The root link's pose in the model frame [m, rad]: identity for URDF and anchored models; an SDF model's root
   // <link><pose>. Gazebo's model pose is the model frame (Model::WorldPose): World::model_state reports root link

@@ -69,15 +69,15 @@ struct LinkProperties {
 struct ModelProperties {
   std::vector<std::string> bodies;      // links that are bodies (fixed joints merge a child into its parent)
   std::vector<std::string> geoms;       // collision names, Gazebo's URDF naming: LINK_collision[_N]
-  std::vector<std::string> joints;      // moving joints
-  bool is_static = false;
+  std::vector<std::string> joints;      // Gazebo's Model::GetJoints: moving and fixed (not car's static anchors)
+  bool is_static = false;               // the model's <static>
 };
 
 struct JointProperties {
   std::string model;
   JointType type = JointType::Revolute;
-  double position = 0.0;  // [rad] or [m]
-  double velocity = 0.0;  // [rad/s] or [m/s]
+  double position = 0.0;  // [rad] or [m]; a fixed joint NaN (0 on a static model), as Gazebo's Joint::Position
+  double velocity = 0.0;  // [rad/s] or [m/s]; a fixed joint 0
   double damping = 0.0;   // URDF <dynamics damping>
 };
 
@@ -191,7 +191,8 @@ class World {
   void set_link_state(const LinkRef& link, const ModelState& s);
   LinkProperties link_properties(const LinkRef& link) const;
   ModelProperties model_properties(const std::string& model) const;
-  // A moving joint by "MODEL::JOINT" or plain "JOINT" (the first robot that has one).
+  // A joint, moving or fixed (not car's anchors of a static model), by "MODEL::JOINT" or plain "JOINT" (the first
+  // robot that has one).
   JointProperties joint_properties(const std::string& joint) const;
   // Sets joint positions [rad] or [m] of a robot (their speeds to zero; keep_speeds: the speeds stay, as Gazebo's
   // Joint::SetPosition with _preserveWorldVelocity); the root link stays where it is. Throws for an unknown model or

@@ -491,6 +491,7 @@ SdfRobot convert_sdf_model(const sdf::Model& sm, const std::string& source, cons
   // rule 16a: the models it includes flattened into it, as Gazebo 11 loads them; a <model> written inside it is not
   const FlatModel f = flatten_model(sm);
   out.is_static = f.is_static.value_or(false);
+  m.is_static = out.is_static;
   if (!f.nested.empty())
     throw LoadError(source, line_of(f.nested.front().model->Element()), mwhere + "/model[" + f.nested.front().name + "]",
                     "nested models are not simulated by car as one robot");
@@ -588,6 +589,7 @@ SdfRobot convert_sdf_model(const sdf::Model& sm, const std::string& source, cons
       j.parent = "world";
       j.child = r;
       j.origin = pose_of(r);
+      j.anchor = true;
       m.joints.push_back(j);
     }
     Link world;

@@ -40,6 +40,13 @@ bool Joint::SetParam(const std::string& _key, unsigned int _index, const boost::
     gzerr << "SetParam(" << _key << ") boost any_cast error:" << e.what() << "\n";
     return false;
   }
+  const bool motor_key = _key == "vel" || _key == "fmax" || _key == "friction";
+  // a fixed joint: ODEJoint::SetParam(parameter, value), which ODEFixedJoint does not override, does nothing
+  if (fixed && motor_key) return true;
+  if (!motor_key) {
+    gzerr << "Unable to handle joint attribute[" << _key << "] (car offers \"vel\", \"fmax\" and \"friction\")\n";
+    return false;
+  }
   ModelPtr m = model.lock();
   car_sim::World& w = core_of(m);
   car_sim::World::JointMotor motor = w.joint_motor(m->GetName(), name);
@@ -47,13 +54,10 @@ bool Joint::SetParam(const std::string& _key, unsigned int _index, const boost::
     motor.velocity = value;
   } else if (_key == "fmax") {
     motor.max_effort = value;
-  } else if (_key == "friction") {
-    // Coulomb friction as ODE models it: a motor holding 0 with at most the friction
+  } else {
+    // "friction": Coulomb friction as ODE models it, a motor holding 0 with at most the friction
     motor.max_effort = value;
     motor.velocity = 0.0;
-  } else {
-    gzerr << "Unable to handle joint attribute[" << _key << "] (car offers \"vel\", \"fmax\" and \"friction\")\n";
-    return false;
   }
   // as ODEJoint: both links enabled
   if (LinkPtr c = GetChild()) c->SetEnabled(true);
@@ -72,12 +76,15 @@ double Joint::GetParam(const std::string& _key, unsigned int _index) {
     gzerr << "Invalid index[" << _index << "]\n";
     return 0.0;
   }
+  if (_key != "vel" && _key != "fmax" && _key != "friction") {
+    gzerr << "Unable to get joint attribute[" << _key << "]\n";
+    return 0.0;
+  }
+  // a fixed joint: ODEJoint::GetParam(parameter) of ODEFixedJoint, 0
+  if (fixed) return 0.0;
   ModelPtr m = model.lock();
   const car_sim::World::JointMotor motor = core_of(m).joint_motor(m->GetName(), name);
-  if (_key == "vel") return motor.velocity;
-  if (_key == "fmax" || _key == "friction") return motor.max_effort;
-  gzerr << "Unable to get joint attribute[" << _key << "]\n";
-  return 0.0;
+  return _key == "vel" ? motor.velocity : motor.max_effort;
 }
 
 // ---- Link ------------------------------------------------------------------------------------------------------

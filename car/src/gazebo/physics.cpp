@@ -105,10 +105,14 @@ void Model::Build() {
   car_sim::World& w = core_of(world.lock());
   const car_sim::RobotModel& m = robot_model(w, name);
   ModelPtr self = boost::static_pointer_cast<Model>(shared_from_this());
-  // the root first: Gazebo's canonical link
-  for (const auto& l : m.links) links.push_back(LinkPtr(new Link(self, l.name)));
+  // the root first: Gazebo's canonical link. Not the link `world` that anchors a model (a URDF's, which Gazebo's
+  // URDF import drops; car's own for a static SDF model, whose links are Gazebo's): it is no link of the model.
+  for (const auto& l : m.links)
+    if (!(l.name == "world" && m.root_link == "world")) links.push_back(LinkPtr(new Link(self, l.name)));
+  // every joint the model loaded, fixed ones too, in the model's order (Model::LoadJoints); not car's anchors of a
+  // static model. A URDF's lumped fixed joints are gone, as in Gazebo's URDF import.
   for (const auto& j : m.joints)
-    if (j.type != car_sim::JointType::Fixed) joints.push_back(JointPtr(new Joint(self, j.name)));
+    if (!j.anchor) joints.push_back(JointPtr(new Joint(self, j.name)));
   sdf = std::make_shared<sdf::Element>();
   sdf->SetName("model");
   sdf->AddAttribute("name", "string", "", true);
@@ -181,7 +185,7 @@ void Model::SetLinearVel(const ignition::math::Vector3d& _vel) {
 void Model::SetAngularVel(const ignition::math::Vector3d& _vel) {
   if (LinkPtr root = GetLink()) root->SetAngularVel(_vel);
 }
-bool Model::IsStatic() const { return false; }
+bool Model::IsStatic() const { return robot_model(core_of(world.lock()), name).is_static; }
 
 // ---- Link --------------------------------------------------------------------------------------------------
 
@@ -360,6 +364,10 @@ Joint::Joint(ModelPtr _model, const std::string& _name)
     // Gazebo's URDF import makes a continuous or revolute joint a hinge, a prismatic one a slider
     if (j.type == car_sim::JointType::Prismatic) AddType(SLIDER_JOINT);
     if (j.type == car_sim::JointType::Revolute || j.type == car_sim::JointType::Continuous) AddType(HINGE_JOINT);
+    if (j.type == car_sim::JointType::Fixed) {
+      AddType(FIXED_JOINT);
+      fixed = true;
+    }
     parent = j.parent;
     child = j.child;
     axis = ign(j.axis);
@@ -383,6 +391,11 @@ bool bad_index(unsigned int index, const std::string& joint) {
   return true;
 }
 
+// Gazebo 11's warning for a call a fixed joint does not take (gazebo/physics/ode/ODEFixedJoint.cc).
+void fixed_warning(const char* method) {
+  gzwarn << "ODEFixedJoint: called method " << method << " that is not valid for joints of type fixed.\n";
+}
+
 }  // namespace
 
 ModelPtr Joint::GetModel() const { return model.lock(); }
@@ -394,27 +407,51 @@ LinkPtr Joint::GetChild() const {
   ModelPtr m = model.lock();
   return m ? m->GetLink(child) : LinkPtr();
 }
-unsigned int Joint::DOF() const { return 1; }
+unsigned int Joint::DOF() const { return fixed ? 0 : 1; }
 
+// A fixed joint answers each call as Gazebo 11's ODE fixed joint (FixedJoint<ODEJoint>, DOF 0): Joint.cc and
+// ODEJoint.cc's checks of the index against DOF(), and ODEFixedJoint.cc's warnings (docs/PLUGINS.md).
 double Joint::Position(const unsigned int _index) const {
+  if (fixed) {
+    // Joint::Position: a static model's joint reads its staticPosition, 0 (a fixed joint's SetPosition never
+    // stores one)
+    if (model.lock()->IsStatic()) return 0.0;
+    fixed_warning("PositionImpl");
+    return std::numeric_limits<double>::quiet_NaN();
+  }
   if (bad_index(_index, name)) return std::numeric_limits<double>::quiet_NaN();
   ModelPtr m = model.lock();
   return core_of(m->GetWorld()).joint_position(m->GetName(), name);
 }
 
 double Joint::GetVelocity(unsigned int _index) const {
+  if (fixed) {
+    fixed_warning("GetVelocity");
+    return 0.0;
+  }
   if (bad_index(_index, name)) return 0.0;
   ModelPtr m = model.lock();
   return core_of(m->GetWorld()).joint_velocity(m->GetName(), name);
 }
 
 void Joint::SetVelocity(unsigned int _index, double _vel) {
+  if (fixed) {
+    fixed_warning("SetVelocity");
+    return;
+  }
   if (bad_index(_index, name)) return;
   ModelPtr m = model.lock();
   core_of(m->GetWorld()).set_joint_velocity(m->GetName(), name, _vel);
 }
 
 void Joint::SetForce(unsigned int _index, double _effort) {
+  if (fixed) {
+    // ODEJoint::SetForce: CheckAndTruncateForce, SaveForce, then ODEFixedJoint::SetForceImpl
+    gzerr << "Calling Joint::SetForce with an index [" << _index << "] out of range\n";
+    gzerr << "Something's wrong, joint [" << GetScopedName() << "] index [" << _index << "] out of range.\n";
+    fixed_warning("SetForceImpl");
+    return;
+  }
   if (bad_index(_index, name)) return;
   // as ODEJoint: both links enabled
   if (LinkPtr c = GetChild()) c->SetEnabled(true);
@@ -432,11 +469,20 @@ void Joint::SetForce(unsigned int _index, double _effort) {
 }
 
 double Joint::GetForce(unsigned int _index) {
+  if (fixed) {
+    gzerr << "Invalid joint index [" << _index << "] when trying to get force\n";
+    return 0.0;
+  }
   if (bad_index(_index, name)) return 0.0;
   return forceApplied;
 }
 
 bool Joint::SetPosition(const unsigned int _index, const double _position, const bool _preserveWorldVelocity) {
+  if (fixed) {
+    // Joint::SetPositionMaximal
+    gzerr << "Joint axis index [" << _index << "] larger than DOF count [0].\n";
+    return false;
+  }
   if (bad_index(_index, name)) return false;
   // Gazebo's Joint::SetPositionMaximal: the position is held within the joint's limits first
   const double position = lower < upper ? std::clamp(_position, lower, upper) : std::clamp(_position, upper, lower);
@@ -447,11 +493,37 @@ bool Joint::SetPosition(const unsigned int _index, const double _position, const
   return true;
 }
 
-double Joint::LowerLimit(unsigned int _index) const { return bad_index(_index, name) ? 0.0 : lower; }
-double Joint::UpperLimit(const unsigned int _index) const { return bad_index(_index, name) ? 0.0 : upper; }
-double Joint::GetEffortLimit(unsigned int _index) { return bad_index(_index, name) ? 0.0 : effort; }
-double Joint::GetVelocityLimit(unsigned int _index) { return bad_index(_index, name) ? 0.0 : velocity; }
+double Joint::LowerLimit(unsigned int _index) const {
+  if (fixed) {
+    gzwarn << "requesting lower limit of joint index out of bound\n";
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  return bad_index(_index, name) ? 0.0 : lower;
+}
+double Joint::UpperLimit(const unsigned int _index) const {
+  if (fixed) {
+    gzwarn << "requesting upper limit of joint index out of bound\n";
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  return bad_index(_index, name) ? 0.0 : upper;
+}
+double Joint::GetEffortLimit(unsigned int _index) {
+  if (fixed) {
+    gzerr << "GetEffortLimit index[" << _index << "] out of range\n";
+    return 0.0;
+  }
+  return bad_index(_index, name) ? 0.0 : effort;
+}
+double Joint::GetVelocityLimit(unsigned int _index) {
+  if (fixed) {
+    gzerr << "GetVelocityLimit index[" << _index << "] out of range\n";
+    return 0.0;
+  }
+  return bad_index(_index, name) ? 0.0 : velocity;
+}
 ignition::math::Vector3d Joint::LocalAxis(const unsigned int _index) const {
+  // a fixed joint: Gazebo reads an <axis> written on it; car keeps none (docs/PLUGINS.md)
+  if (fixed) return ignition::math::Vector3d::Zero;
   return bad_index(_index, name) ? ignition::math::Vector3d::Zero : axis;
 }
 

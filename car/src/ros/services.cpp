@@ -397,6 +397,7 @@ bool SimNode::joint_properties(gazebo_msgs::GetJointProperties::Request& req,
   using R = gazebo_msgs::GetJointProperties::Response;
   res.type = p.type == car_sim::JointType::Prismatic   ? R::PRISMATIC
              : p.type == car_sim::JointType::Continuous ? R::CONTINUOUS
+             : p.type == car_sim::JointType::Fixed      ? R::FIXED
                                                         : R::REVOLUTE;
   res.damping = {p.damping};
   res.position = {p.position};

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <limits>
 #include <map>
 #include <stdexcept>
 
@@ -876,8 +877,11 @@ ModelProperties World::model_properties(const std::string& model) const {
         p.geoms.push_back(base + "_collision" + (i ? "_" + std::to_string(i) : std::string()));
       }
     }
+    // gazebo_ros lists Model::GetJoints: every joint the model loaded, fixed ones too (a lumped URDF joint is gone;
+    // car's anchors of a static SDF model were never Gazebo's)
     for (const auto& j : r->info.model.joints)
-      if (j.type != JointType::Fixed) p.joints.push_back(j.name);
+      if (!j.anchor) p.joints.push_back(j.name);
+    p.is_static = r->info.model.is_static;
     return p;
   }
   const WorldModelDesc* m = desc_.find_model(model);
@@ -891,31 +895,42 @@ ModelProperties World::model_properties(const std::string& model) const {
 
 namespace {
 
-// (robot, joint) of a moving joint by scoped or plain name.
+// (robot, joint) by scoped or plain name, as Gazebo 11's Model::GetJoint, model by model (gazebo_ros
+// get_joint_properties): the joint's scoped name "MODEL::JOINT" or its name, which may hold "::" itself (an included
+// model's "N::joint", docs/COMPAT-sdf.md 16a). A moving joint only, or (moving false) a fixed one too; never car's
+// anchors of a static model, which Gazebo does not have.
 template <class Robots>
-// Gazebo 11's Model::GetJoint, model by model (gazebo_ros get_joint_properties): the joint's scoped name
-// "MODEL::JOINT" or its name, which may hold "::" itself (an included model's "N::joint", docs/COMPAT-sdf.md 16a).
-std::pair<const RobotInfo*, const Joint*> find_joint(const Robots& robots, const std::string& name) {
+std::pair<const RobotInfo*, const Joint*> find_joint(const Robots& robots, const std::string& name,
+                                                     bool moving = true) {
   for (const auto& r : robots) {
     for (const auto& j : r->info.model.joints)
-      if ((j.name == name || r->info.name + "::" + j.name == name) && j.type != JointType::Fixed)
+      if ((j.name == name || r->info.name + "::" + j.name == name) && !j.anchor &&
+          (!moving || j.type != JointType::Fixed))
         return {&r->info, &j};
   }
-  throw std::invalid_argument("no robot has a moving joint named '" + name + "'");
+  throw std::invalid_argument(std::string("no robot has a ") + (moving ? "moving " : "") + "joint named '" + name +
+                              "'");
 }
 
 }  // namespace
 
 JointProperties World::joint_properties(const std::string& name) const {
-  const auto [info, joint] = find_joint(impl_->robots, name);
-  const auto* r = impl_->find(info->name);
-  const int j = r->body->joint(joint->name);
+  const auto [info, joint] = find_joint(impl_->robots, name, false);
   JointProperties p;
   p.model = info->name;
   p.type = joint->type;
+  p.damping = joint->damping;
+  if (joint->type == JointType::Fixed) {
+    // Gazebo's Joint::Position(0) of a fixed joint: NaN (ODEFixedJoint::PositionImpl), 0 on a static model; its
+    // GetVelocity 0
+    p.position = info->model.is_static ? 0.0 : std::numeric_limits<double>::quiet_NaN();
+    p.velocity = 0.0;
+    return p;
+  }
+  const auto* r = impl_->find(info->name);
+  const int j = r->body->joint(joint->name);
   p.position = r->body->joint_position(j);
   p.velocity = r->body->joint_velocity(j);
-  p.damping = joint->damping;
   return p;
 }
 

@@ -64,6 +64,8 @@ class Joint : public Base {
   ignition::math::Vector3d axis;
   double forceApplied = 0.0;
   common::Time forceAppliedTime;
+  // a fixed joint: no axis (DOF 0), and each call answers as Gazebo 11's ODEFixedJoint
+  bool fixed = false;
 };
 
 }  // namespace physics
