@@ -303,7 +303,7 @@ def check(root):
                 continue  # the C++ standard library
             if inc in ('malloc.h', 'sys/stat.h', 'unistd.h', 'sys/resource.h', 'sys/types.h', 'signal.h', 'fcntl.h',
                        'netinet/tcp.h', 'sys/socket.h', 'pthread.h', 'dlfcn.h', 'sys/mman.h', 'sys/wait.h',
-                       'poll.h', 'immintrin.h', 'sys/syscall.h', 'dirent.h'):
+                       'poll.h', 'immintrin.h', 'sys/syscall.h', 'dirent.h', 'time.h'):
                 continue  # the C library and compiler intrinsics
             bench = next((p for p in BENCH_HEADERS if inc.startswith(p)), None)
             if bench and rel_path.startswith(os.path.join('car', 'bench') + os.sep):

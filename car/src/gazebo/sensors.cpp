@@ -204,17 +204,18 @@ std::string RaySensor::Topic() const {
 namespace {
 const char* const kLaserScanStamped = "gazebo.msgs.LaserScanStamped";
 
-// The hub of the sensor's world and its topic there, decoded as transport::Node does ("~/" -> "/gazebo/WORLD/")
-std::pair<car_gazebo::Hub*, std::string> scan_topic(const RaySensor& _sensor) {
-  const std::string world = _sensor.WorldName();
-  return {car_gazebo::Hub::named(world), "/gazebo/" + world + "/" + _sensor.Topic().substr(2)};
-}
 }  // namespace
 
 bool RaySensor::IsActive() const {
   if (Sensor::IsActive()) return true;
-  const auto [hub, topic] = scan_topic(*this);
-  return hub && hub->subscribed(topic, kLaserScanStamped);
+  car_gazebo::Hub* hub = car_gazebo::Hub::named(WorldName());
+  return hub && hub->subscribed(ScanTopic(), kLaserScanStamped);
+}
+
+// Topic() decoded as transport::Node does ("~/" -> "/gazebo/WORLD/"), made on first use
+const std::string& RaySensor::ScanTopic() const {
+  if (decodedTopic.empty()) decodedTopic = "/gazebo/" + WorldName() + "/" + Topic().substr(2);
+  return decodedTopic;
 }
 
 void RaySensor::CarMeasure(const car_sim::Output* _sample) {
@@ -223,7 +224,8 @@ void RaySensor::CarMeasure(const car_sim::Output* _sample) {
   ranges.assign(s->ranges.begin(), s->ranges.end());
   retros.assign(s->intensities.begin(), s->intensities.end());
   // Gazebo's RaySensor::UpdateImpl: the scan on its topic, while it has a subscriber
-  const auto [hub, topic] = scan_topic(*this);
+  car_gazebo::Hub* hub = car_gazebo::Hub::named(WorldName());
+  const std::string& topic = ScanTopic();
   if (!hub || !hub->subscribed(topic, kLaserScanStamped)) return;
   auto msg = boost::make_shared<msgs::LaserScanStamped>();
   msgs::Set(msg->mutable_time(), LastMeasurementTime());

@@ -45,7 +45,10 @@ class RaySensor : public Sensor {
   void CarMeasure(const car_sim::Output* _sample) override;
 
  private:
+  const std::string& ScanTopic() const;
   std::vector<double> ranges, retros;
+  // car: Topic() decoded as transport::Node does ("/gazebo/WORLD/..."), made once (IsActive asks every step)
+  mutable std::string decodedTopic;
 };
 
 }  // namespace sensors
