@@ -10,21 +10,6 @@
 namespace car_sim {
 namespace control {
 
-// control_toolbox::Pid (1.19.0) as the controllers use it: p, i, d, i_clamp (or i_clamp_min/i_clamp_max),
-// antiwindup; docs/COMPAT-control.md "control_toolbox" has the rules.
-struct Pid {
-  double p = 0, i = 0, d = 0, i_min = 0, i_max = 0;
-  bool antiwindup = false;
-  double i_error = 0;  // the integral of the error [error s]; without antiwindup it winds up past the clamp
-  double p_term = 0, i_term = 0, d_term = 0;
-  // Reads KEY/p, KEY/i, ... (prefix "pid" or "gains/JOINT") as Pid::init: p is required; i_clamp gives
-  // [-|c|, |c|]; i_clamp_min and i_clamp_max override one bound each, their signs forced.
-  static Pid from(const ParamReader& r, const std::string& prefix);
-  // error, its derivative [per s], dt [s] -> command; dt 0 or a non-finite input gives 0 and keeps the integral
-  double compute(double error, double error_dot, double dt);
-  void reset() { i_error = p_term = i_term = d_term = 0; }
-};
-
 // A port of controller `name`: named "<name>/<leaf>", on `topic` (absolute).
 InputPort controller_input(const std::string& name, const std::string& leaf, InputType type, const std::string& topic,
                            uint32_t queue);

@@ -44,3 +44,14 @@ TEST(ControlPid, ClampMinAndMaxOverrideIClampWithTheirSignsForced) {
   EXPECT_EQ(-5.0, pid.i_min);
   EXPECT_EQ(4.0, pid.i_max);
 }
+
+TEST(ControlPid, ErrorOnlyComputeDifferencesTheLastError) {
+  Pid pid;
+  pid.d = 1.0;
+  // d only, dt 0.1 s: no last error at first (derivative 0), then (1.5 - 1) / 0.1 = 5; dt < 0 keeps the last
+  // derivative, 5, and not the error (a following 2.5 at dt 0.1 is (2.5 - 1.5) / 0.1 = 10)
+  EXPECT_EQ(0.0, pid.compute(1.0, 0.1));
+  EXPECT_DOUBLE_EQ(5.0, pid.compute(1.5, 0.1));
+  EXPECT_DOUBLE_EQ(5.0, pid.compute(2.0, -0.1));
+  EXPECT_DOUBLE_EQ(10.0, pid.compute(2.5, 0.1));
+}
