@@ -474,18 +474,22 @@ class PeriodGate {
 
 // ---- calls: a plug-in's services (controller_manager's) ----
 
-// The call families (controller_manager_msgs' services).
+// The call families: controller_manager_msgs' services, and SetParameters, which is no service: the skin makes it
+// once, when it sets up the instance's ports, with the parameters it finds under the port's `ns` (none: no call),
+// as a Gazebo plug-in reads the parameter server in its Load (gazebo_ros_control's pid_gains).
 enum class CallType {
   LoadController, UnloadController, SwitchController, ListControllers, ListControllerTypes,
-  ReloadControllerLibraries,
+  ReloadControllerLibraries, SetParameters,
 };
 
 // A service of one plug-in instance, resolved.
 struct ServicePort {
   std::string name;  // the kind's name for it, e.g. "load_controller"
   CallType type = CallType::LoadController;
-  std::string topic;  // absolute service name
-  std::string ns;     // LoadController: where the skin reads a controller's parameters (<ns>/<controller name>)
+  std::string topic;  // absolute service name ("" for SetParameters)
+  // LoadController: where the skin reads a controller's parameters (<ns>/<controller name>); SetParameters: the
+  // parameters it reads (absolute)
+  std::string ns;
 };
 
 // A controller's configuration: key path ("pid/p", "joints") -> its values (one for a scalar, several for a list),
@@ -495,7 +499,7 @@ using CallParams = std::map<std::string, std::vector<std::string>>;
 // One call's arguments: the fields its family uses.
 struct CallRequest {
   std::string name;                          // Load-, UnloadController: the controller
-  CallParams params;                         // LoadController: its parameters
+  CallParams params;                         // LoadController: its parameters; SetParameters: those under ns
   std::vector<std::string> start, stop;      // SwitchController
   int strictness = 0;                        // SwitchController: 1 BEST_EFFORT, 2 STRICT
   bool force_kill = false;                   // ReloadControllerLibraries
@@ -509,7 +513,7 @@ struct ControllerStatus {
 // What a call did: ok, the lines for the skin's log, and the answers of the List calls.
 struct CallResponse {
   bool ok = true;
-  std::vector<std::string> errors, infos;  // for the log, as controller_manager logs them
+  std::vector<std::string> errors, warnings, infos;  // for the log, as controller_manager logs them
   std::vector<ControllerStatus> controllers;                  // ListControllers
   std::vector<std::pair<std::string, std::string>> types;     // ListControllerTypes: (type, base class)
   bool ports_changed = false;  // the instance's ports changed (a controller came or went): the skin reads them again

@@ -1,4 +1,5 @@
-// The calls half of the ROS bridge: controller_manager_msgs requests -> car_sim::CallRequest, by call type.
+// The calls half of the ROS bridge: controller_manager_msgs requests -> car_sim::CallRequest, by call type; and a
+// plug-in's parameters from the parameter server, read once (CallType::SetParameters).
 #include "calls.hpp"
 
 #include <controller_manager_msgs/ListControllerTypes.h>
@@ -59,6 +60,7 @@ struct Service {
   car_sim::CallResponse call(const car_sim::CallRequest& rq) const {
     car_sim::CallResponse r = node->world().call(robot, plugin, port.name, rq);
     for (const auto& e : r.errors) ROS_ERROR("car: %s", e.c_str());
+    for (const auto& w : r.warnings) ROS_WARN("car: %s", w.c_str());
     for (const auto& i : r.infos) ROS_INFO("car: %s", i.c_str());
     if (r.ports_changed && changed) changed();
     return r;
@@ -143,6 +145,16 @@ ros::ServiceServer advertise(const std::shared_ptr<Service>& s) {
         rs.ok = s->call(c).ok;
         return true;
       });
+    case T::SetParameters: {
+      // no service: one call now with what the parameter server holds under ns, as a plug-in's Load reads it
+      XmlRpc::XmlRpcValue v;
+      if (ros::param::get(s->port.ns, v)) {
+        car_sim::CallRequest c;
+        flatten(v, "", &c.params);
+        s->call(c);
+      }
+      return {};
+    }
   }
   return {};
 }
@@ -159,6 +171,7 @@ std::string ServicePorts::setup(const car_sim::PluginInfo& plugin, NodeContext& 
     s->node = &node;
     s->changed = changed;
     servers_.push_back(advertise(s));
+    if (sp.topic.empty()) continue;  // a call made once (SetParameters), no service
     const std::string ns = sp.topic.substr(0, sp.topic.rfind('/'));
     if (where.find(ns) == std::string::npos) where += (where.empty() ? "" : ", ") + ns;
   }

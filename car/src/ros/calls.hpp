@@ -1,6 +1,7 @@
 // The calls half of the ROS bridge: one service factory per call type (controller_manager_msgs' LoadController,
-// UnloadController, SwitchController, ListControllers, ListControllerTypes, ReloadControllerLibraries). Every
-// request becomes a car_sim::CallRequest and enters the core through World::call; its log lines are the core's.
+// UnloadController, SwitchController, ListControllers, ListControllerTypes, ReloadControllerLibraries), and one
+// call at set-up with the parameters a SetParameters port names. Every request becomes a car_sim::CallRequest and
+// enters the core through World::call; its log lines are the core's.
 // Names no plug-in kind.
 #pragma once
 

@@ -10,19 +10,6 @@
 namespace car_sim {
 namespace control {
 
-// control_toolbox::Pid as the controllers use it: p, i, d, i_clamp (or i_clamp_min/i_clamp_max), antiwindup.
-struct Pid {
-  double p = 0, i = 0, d = 0, i_min = 0, i_max = 0;
-  bool antiwindup = false;
-  double i_term = 0, last_error = 0;
-  double p_term = 0, d_term = 0;
-  // Reads KEY/p, KEY/i, ... (prefix "pid" or "gains/JOINT"); p is required.
-  static Pid from(const ParamReader& r, const std::string& prefix);
-  // error, its derivative [per s], dt [s] -> command
-  double compute(double error, double error_dot, double dt);
-  void reset() { i_term = last_error = p_term = d_term = 0; }
-};
-
 // A port of controller `name`: named "<name>/<leaf>", on `topic` (absolute).
 InputPort controller_input(const std::string& name, const std::string& leaf, InputType type, const std::string& topic,
                            uint32_t queue);

@@ -8,29 +8,6 @@
 namespace car_sim {
 namespace control {
 
-Pid Pid::from(const ParamReader& r, const std::string& prefix) {
-  Pid g;
-  g.p = r.number(prefix + "/p");
-  g.i = r.number(prefix + "/i", 0.0);
-  g.d = r.number(prefix + "/d", 0.0);
-  const double clamp = std::abs(r.number(prefix + "/i_clamp", 0.0));
-  g.i_max = r.number(prefix + "/i_clamp_max", clamp);
-  g.i_min = r.number(prefix + "/i_clamp_min", -clamp);
-  g.antiwindup = r.flag(prefix + "/antiwindup", false);
-  return g;
-}
-
-// As control_toolbox::Pid::computeCommand(error, error_dot, dt): the integral term i * sum(error dt) is clamped
-// to [i_min, i_max].
-double Pid::compute(double error, double error_dot, double dt) {
-  if (dt <= 0 || !std::isfinite(error) || !std::isfinite(error_dot)) return 0.0;
-  p_term = p * error;
-  i_term = std::clamp(i_term + i * dt * error, i_min, i_max);
-  d_term = d * error_dot;
-  last_error = error;
-  return p_term + i_term + d_term;
-}
-
 InputPort controller_input(const std::string& name, const std::string& leaf, InputType type, const std::string& topic,
                            uint32_t queue) {
   InputPort p;

@@ -12,7 +12,9 @@ namespace car_sim {
 namespace control {
 
 ControllerError::ControllerError(const std::string& controller, const std::string& key, const std::string& reason)
-    : std::runtime_error("controller '" + controller + "': " + (key.empty() ? "" : key + ": ") + reason) {}
+    : std::runtime_error("controller '" + controller + "': " + (key.empty() ? "" : key + ": ") + reason),
+      key_(key),
+      reason_(reason) {}
 
 const char* to_string(Interface i) {
   switch (i) {
@@ -73,6 +75,48 @@ std::vector<double> ParamReader::numbers(const std::string& key) const {
   std::vector<double> out;
   for (const auto& v : list(key)) out.push_back(to_number(*this, key, v));
   return out;
+}
+
+Pid Pid::from(const ParamReader& r, const std::string& prefix) {
+  Pid g;
+  g.p = r.number(prefix + "/p");
+  g.i = r.number(prefix + "/i", 0.0);
+  g.d = r.number(prefix + "/d", 0.0);
+  const double clamp = std::abs(r.number(prefix + "/i_clamp", 0.0));
+  g.i_max = std::abs(r.number(prefix + "/i_clamp_max", clamp));
+  g.i_min = -std::abs(r.number(prefix + "/i_clamp_min", clamp));
+  g.antiwindup = r.flag(prefix + "/antiwindup", false);
+  return g;
+}
+
+// As control_toolbox::Pid::computeCommand(error, error_dot, dt): without antiwindup the term i * sum(error dt) is
+// clamped to [i_min, i_max] while the sum goes on; with it (i != 0) the sum itself stays within [i_min, i_max] / i.
+double Pid::compute(double error, double error_dot, double dt) {
+  d_error = error_dot;
+  if (dt == 0.0 || !std::isfinite(error) || !std::isfinite(error_dot)) return 0.0;
+  p_term = p * error;
+  i_error += dt * error;
+  if (antiwindup && i != 0.0) {
+    const double a = i_min / i, b = i_max / i;
+    i_error = std::clamp(i_error, std::min(a, b), std::max(a, b));
+  }
+  i_term = i * i_error;
+  // i_min <= 0 <= i_max (from() forces the signs)
+  if (!antiwindup) i_term = std::clamp(i_term, i_min, i_max);
+  d_term = d * error_dot;
+  return p_term + i_term + d_term;
+}
+
+// As control_toolbox::Pid::computeCommand(error, dt).
+double Pid::compute(double error, double dt) {
+  if (dt == 0.0 || !std::isfinite(error)) return 0.0;
+  double error_dot = d_error;
+  if (dt > 0.0) {
+    if (valid_last) error_dot = (error - p_error_last) / dt;
+    p_error_last = error;
+    valid_last = true;
+  }
+  return compute(error, error_dot, dt);
 }
 
 const ControllerType* find_controller_type(const std::string& name) {
@@ -242,6 +286,7 @@ void RosControl::configure(RobotHandle& robot) {
     motors_.push_back(j.has(Interface::Position) || j.has(Interface::Velocity) ? robot.add_motor(j.index, 1e12) : -1);
   for (const auto& j : joints_) subtree_.push_back(j.joint ? links_below(*model_, *j.joint) : std::vector<const Link*>{});
   modes_.assign(joints_.size(), -1);
+  pids_.assign(joints_.size(), std::nullopt);
   read(robot);
   for (auto& j : joints_) j.cmd_position = j.position;
 }
@@ -307,13 +352,25 @@ void RosControl::pre_physics(const StepContext& ctx, RobotHandle& robot) {
     m.kd = 0.0;
     m.kp = 0.0;
     const double limit = j.joint && j.joint->limits && j.joint->limits->effort > 0 ? j.joint->limits->effort : 0.0;
+    // pid_gains: the PID's effort on the error from the joint's state as last read, every step, capped by the
+    // effort limit (DefaultRobotHWSim::writeSim, POSITION_PID and VELOCITY_PID); its motor is off
+    if (pids_[k] && mode != Interface::Effort) {
+      double error = j.cmd_velocity - j.velocity;  // [rad/s] or [m/s]
+      if (mode == Interface::Position) {
+        error = position_command(k) - j.position;  // [rad] or [m]
+        if (j.joint && j.joint->type == JointType::Continuous) error = std::remainder(error, 2.0 * M_PI);
+      }
+      double f = pids_[k]->compute(error, ctx.dt);  // [N m] or [N]
+      if (limit > 0) f = std::clamp(f, -limit, limit);
+      robot.add_joint_effort(j.index, f);
+      j.effort = f;
+      m.enabled = false;
+      if (motors_[k] >= 0) robot.set_motor(motors_[k], m);
+      continue;
+    }
     switch (mode) {
       case Interface::Position: {
-        double p = j.cmd_position;
-        // a revolute or prismatic joint's command is clamped to its <limit lower upper>, as joint_limits_interface
-        if (j.joint && j.joint->limits && j.joint->type != JointType::Continuous &&
-            j.joint->limits->lower < j.joint->limits->upper)
-          p = std::clamp(p, j.joint->limits->lower, j.joint->limits->upper);
+        const double p = position_command(k);
         // The motor asks for the error's velocity e / dt (on the command in one step), but no faster than the
         // joint can still stop at the command braking at half its effort cap over its locked inertia I:
         // sqrt(2 a |e|), a = 0.5 * effort / I. Without it the capped motor brakes only within one step's travel
@@ -347,6 +404,54 @@ void RosControl::pre_physics(const StepContext& ctx, RobotHandle& robot) {
     }
     if (motors_[k] >= 0) robot.set_motor(motors_[k], m);
   }
+}
+
+double RosControl::position_command(size_t k) const {
+  const control::JointIo& j = joints_[k];
+  const double p = j.cmd_position;
+  if (j.joint && j.joint->limits && j.joint->type != JointType::Continuous &&
+      j.joint->limits->lower < j.joint->limits->upper)
+    return std::clamp(p, j.joint->limits->lower, j.joint->limits->upper);
+  return p;
+}
+
+// As DefaultRobotHWSim::initSim: a joint commanded by position or velocity whose pid_gains has a p is driven by
+// that PID from now on; one without p keeps its motor (Gazebo: SetPosition, SetParam("vel")). car says what it
+// used, and what it could not.
+void RosControl::set_pid_gains(const control::Params& params, CallResponse* r) {
+  const std::string at = join_ns(ns_, "gazebo_ros_control/pid_gains");
+  std::set<std::string> named;
+  for (const auto& kv : params) named.insert(kv.first.substr(0, kv.first.find('/')));
+  for (size_t k = 0; k < joints_.size(); ++k) {
+    const control::JointIo& j = joints_[k];
+    if (!named.erase(j.name)) continue;
+    const std::string where = "gazebo_ros_control: " + at + "/" + j.name;
+    if (!j.has(Interface::Position) && !j.has(Interface::Velocity)) {
+      r->warnings.push_back(where + ": joint '" + j.name + "' offers only an effort interface; its gains are not "
+                            "used (as in Gazebo)");
+      continue;
+    }
+    if (!params.count(j.name + "/p")) {
+      r->warnings.push_back(where + ": no p (required key); joint '" + j.name + "' keeps its motor (Gazebo says "
+                            "'No p gain specified for pid')");
+      continue;
+    }
+    try {
+      pids_[k] = control::Pid::from(control::ParamReader("pid_gains", params), j.name);
+    } catch (const ControllerError& e) {
+      r->ok = false;
+      r->errors.push_back("gazebo_ros_control: " + at + "/" + e.key() + ": " + e.reason() + "; joint '" + j.name +
+                          "' keeps its motor");
+      continue;
+    }
+    std::ostringstream g;
+    g << "p " << pids_[k]->p << ", i " << pids_[k]->i << ", d " << pids_[k]->d;
+    r->infos.push_back(where + ": joint '" + j.name + "' follows its position and velocity commands by this PID (" +
+                       g.str() + "), its effort capped by the joint's effort limit");
+  }
+  for (const auto& n : named)
+    r->warnings.push_back("gazebo_ros_control: " + at + "/" + n + ": no transmission joint '" + n +
+                          "' in this robot; ignored");
 }
 
 void RosControl::post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) {
@@ -516,7 +621,9 @@ CallResponse RosControl::call(const std::string& service, const CallRequest& rq)
     r.errors.push_back("controller_manager: " + why);
     return r;
   };
-  if (service == "load_controller") {
+  if (service == "pid_gains") {
+    set_pid_gains(rq.params, &r);
+  } else if (service == "load_controller") {
     const std::string pns = join_ns(ns_, rq.name);
     const auto t = rq.params.find("type");
     if (t == rq.params.end() || t->second.size() != 1)
@@ -581,7 +688,7 @@ const PluginKind& ros_control_kind() {
     k.ignored = {{"robotParam", "car reads the robot it spawned, not robot_description"},
                  {"eStopTopic", "not simulated"}};
     k.finish = finish;
-    // controller_manager's services under <ns>/controller_manager/
+    // controller_manager's services under <ns>/controller_manager/, and the pid_gains call
     k.services = [](const PluginConfig& c, const std::string& robot) {
       const std::string ns = control_ns(c, robot), cm = join_ns(ns, "controller_manager");
       std::vector<ServicePort> out;
@@ -594,6 +701,8 @@ const PluginKind& ros_control_kind() {
                {"list_controller_types", C::ListControllerTypes},
                {"reload_controller_libraries", C::ReloadControllerLibraries}})
         out.push_back({name, type, cm + "/" + name, ns.empty() ? "" : "/" + ns});
+      // DefaultRobotHWSim's gains, read once from <ns>/gazebo_ros_control/pid_gains
+      out.push_back({"pid_gains", C::SetParameters, "", join_ns(ns, "gazebo_ros_control/pid_gains")});
       return out;
     };
     k.make = [](const PluginConfig& c, const std::string& robot, uint64_t) -> std::unique_ptr<Plugin> {

@@ -9,6 +9,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -29,6 +30,11 @@ using Params = CallParams;
 class ControllerError : public std::runtime_error {
  public:
   ControllerError(const std::string& controller, const std::string& key, const std::string& reason);
+  const std::string& key() const { return key_; }
+  const std::string& reason() const { return reason_; }
+
+ private:
+  std::string key_, reason_;
 };
 
 // Typed reads of a controller's Params; throw ControllerError naming the controller and the key.
@@ -49,6 +55,30 @@ class ParamReader {
  private:
   std::string name_;
   const Params& p_;
+};
+
+// control_toolbox::Pid (1.19.0) as the controllers and gazebo_ros_control's pid_gains use it: p, i, d, i_clamp (or
+// i_clamp_min/i_clamp_max), antiwindup; docs/COMPAT-control.md "control_toolbox" has the rules.
+struct Pid {
+  double p = 0, i = 0, d = 0, i_min = 0, i_max = 0;
+  bool antiwindup = false;
+  double i_error = 0;  // the integral of the error [error s]; without antiwindup it winds up past the clamp
+  double p_term = 0, i_term = 0, d_term = 0;
+  double d_error = 0;        // the last error_dot [per s]
+  double p_error_last = 0;   // the last error of compute(error, dt)
+  bool valid_last = false;   // p_error_last holds an error
+  // Reads KEY/p, KEY/i, ... (prefix "pid" or "gains/JOINT") as Pid::init: p is required; i_clamp gives
+  // [-|c|, |c|]; i_clamp_min and i_clamp_max override one bound each, their signs forced.
+  static Pid from(const ParamReader& r, const std::string& prefix);
+  // error, its derivative [per s], dt [s] -> command; dt 0 or a non-finite input gives 0 and keeps the integral
+  double compute(double error, double error_dot, double dt);
+  // error, dt [s] -> command, its derivative (error - last error) / dt: the last derivative (0 at first) until
+  // there is a last error, and for dt < 0 (control_toolbox's computeCommand(error, dt))
+  double compute(double error, double dt);
+  void reset() {
+    i_error = p_term = i_term = d_term = d_error = p_error_last = 0;
+    valid_last = false;
+  }
 };
 
 enum class Interface { Position, Velocity, Effort };
@@ -184,6 +214,10 @@ class RosControl : public Plugin, public control::Hardware {
  private:
   void read(const RobotHandle& robot);
   control::ControlTime time_at(uint64_t tick, double dt) const;
+  // gazebo_ros_control/pid_gains/JOINT/{p, i, d, ...} (the call "pid_gains"): see pids_
+  void set_pid_gains(const control::Params& params, CallResponse* r);
+  // joint k's position command clamped to its <limit lower upper> (revolute, prismatic), as joint_limits_interface
+  double position_command(size_t k) const;
 
   RosControlConfig cfg_;
   const RobotModel* model_ = nullptr;
@@ -191,6 +225,9 @@ class RosControl : public Plugin, public control::Hardware {
   std::vector<int> motors_;
   std::vector<std::vector<const Link*>> subtree_;  // per joint: the links it moves (its child and below)
   std::vector<int> modes_;  // per joint: the Interface a running controller commands, -1: the first offered
+  // per joint: its pid_gains, if any. Then its position and velocity commands are followed by that PID's effort
+  // (DefaultRobotHWSim's POSITION_PID, VELOCITY_PID) instead of its motor
+  std::vector<std::optional<control::Pid>> pids_;
   std::vector<Loaded> loaded_;
   ModelState root_;
   std::string ns_;   // the robot namespace its topics go under ("" = global), leading '/' dropped

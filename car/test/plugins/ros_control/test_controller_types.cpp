@@ -126,7 +126,9 @@ TEST(ControllerTypes, PositionInterfaceReachesALargeStepWithoutOvershoot) {
   for (int k = 0; k < 1000; ++k) {
     w->step(1);
     highest = std::max(highest, joint(*w, "tt", "a").position);
-    if (k == 199) EXPECT_NEAR(joint(*w, "tt", "a").position, 0.8, 1e-6);  // t = 0.2 s
+    if (k == 199) {
+      EXPECT_NEAR(joint(*w, "tt", "a").position, 0.8, 1e-6);  // t = 0.2 s
+    }
   }
   EXPECT_LE(highest, 0.8 + 1e-9);
   EXPECT_NEAR(joint(*w, "tt", "a").position, 0.8, 1e-9);
