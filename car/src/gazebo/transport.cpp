@@ -131,56 +131,27 @@ void Subscriber::Unsubscribe() const {
   unsubscribe = nullptr;
 }
 
-template <>
-PublisherPtr Node::Advertise<msgs::Vector3d>(const std::string& _topic, unsigned int, double) {
-  return advertise<msgs::Vector3d>(*this, _topic);
-}
+// Node::Advertise, Publisher::Publish and Node::SubscribeCallback for a message M that car carries (type_name<M>)
+#define CAR_TRANSPORT_MESSAGE(M)                                                                             \
+  template <>                                                                                                \
+  PublisherPtr Node::Advertise<M>(const std::string& _topic, unsigned int, double) {                         \
+    return advertise<M>(*this, _topic);                                                                      \
+  }                                                                                                          \
+  template <>                                                                                                \
+  void Publisher::Publish<M>(const M& _message, bool) {                                                      \
+    publish(this->world, this->topic, _message);                                                             \
+  }                                                                                                          \
+  template <>                                                                                                \
+  SubscriberPtr Node::SubscribeCallback<M>(const std::string& _topic,                                        \
+                                           std::function<void(const boost::shared_ptr<M const>&)> _cb,      \
+                                           bool _latching) {                                                 \
+    return subscribe<M>(*this, _topic, std::move(_cb), _latching);                                           \
+  }
 
-template <>
-void Publisher::Publish<msgs::Vector3d>(const msgs::Vector3d& _message, bool) {
-  publish(this->world, this->topic, _message);
-}
-
-template <>
-SubscriberPtr Node::SubscribeCallback<msgs::Vector3d>(
-    const std::string& _topic, std::function<void(const boost::shared_ptr<msgs::Vector3d const>&)> _cb,
-    bool _latching) {
-  return subscribe<msgs::Vector3d>(*this, _topic, std::move(_cb), _latching);
-}
-
-template <>
-PublisherPtr Node::Advertise<msgs::LaserScanStamped>(const std::string& _topic, unsigned int, double) {
-  return advertise<msgs::LaserScanStamped>(*this, _topic);
-}
-
-template <>
-void Publisher::Publish<msgs::LaserScanStamped>(const msgs::LaserScanStamped& _message, bool) {
-  publish(this->world, this->topic, _message);
-}
-
-template <>
-SubscriberPtr Node::SubscribeCallback<msgs::LaserScanStamped>(
-    const std::string& _topic, std::function<void(const boost::shared_ptr<msgs::LaserScanStamped const>&)> _cb,
-    bool _latching) {
-  return subscribe<msgs::LaserScanStamped>(*this, _topic, std::move(_cb), _latching);
-}
-
-template <>
-PublisherPtr Node::Advertise<msgs::ImageStamped>(const std::string& _topic, unsigned int, double) {
-  return advertise<msgs::ImageStamped>(*this, _topic);
-}
-
-template <>
-void Publisher::Publish<msgs::ImageStamped>(const msgs::ImageStamped& _message, bool) {
-  publish(this->world, this->topic, _message);
-}
-
-template <>
-SubscriberPtr Node::SubscribeCallback<msgs::ImageStamped>(
-    const std::string& _topic, std::function<void(const boost::shared_ptr<msgs::ImageStamped const>&)> _cb,
-    bool _latching) {
-  return subscribe<msgs::ImageStamped>(*this, _topic, std::move(_cb), _latching);
-}
+CAR_TRANSPORT_MESSAGE(msgs::Vector3d)
+CAR_TRANSPORT_MESSAGE(msgs::LaserScanStamped)
+CAR_TRANSPORT_MESSAGE(msgs::ImageStamped)
+#undef CAR_TRANSPORT_MESSAGE
 
 }  // namespace transport
 }  // namespace gazebo

@@ -14,16 +14,9 @@
 #include <sstream>
 #include <string>
 
-namespace {
-std::ostringstream g_log;
-std::string g_text;
-}  // namespace
+#include "event_log.hh"
 
-extern "C" GZ_PLUGIN_VISIBLE const char* car_test_camera_transport_log() {
-  g_text = g_log.str();
-  g_log.str("");
-  return g_text.c_str();
-}
+CAR_TEST_PLUGIN_LOG(camera_transport)
 
 namespace gazebo {
 class CameraTransport : public ModelPlugin {

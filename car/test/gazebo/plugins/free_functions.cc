@@ -15,22 +15,17 @@
 #include <sstream>
 #include <string>
 
-namespace {
-std::ostringstream g_log;
-std::string g_text;
+#include "event_log.hh"
 
+CAR_TEST_PLUGIN_LOG(free_functions)
+
+namespace {
 double now(clockid_t clock) {
   struct timespec t;
   clock_gettime(clock, &t);
   return t.tv_sec + t.tv_nsec * 1e-9;
 }
 }  // namespace
-
-extern "C" GZ_PLUGIN_VISIBLE const char* car_test_free_functions_log() {
-  g_text = g_log.str();
-  g_log.str("");
-  return g_text.c_str();
-}
 
 namespace gazebo {
 class FreeFunctions : public ModelPlugin {

@@ -12,17 +12,13 @@
 #include <sstream>
 #include <string>
 
+#include "event_log.hh"
+
+CAR_TEST_PLUGIN_LOG(ray_plugin_probe)
+
 namespace {
-std::ostringstream g_log;
-std::string g_text;
 int g_scans = 0;
 }  // namespace
-
-extern "C" GZ_PLUGIN_VISIBLE const char* car_test_ray_plugin_probe_log() {
-  g_text = g_log.str();
-  g_log.str("");
-  return g_text.c_str();
-}
 
 extern "C" GZ_PLUGIN_VISIBLE int car_test_ray_plugin_probe_scans() {
   const int n = g_scans;
