@@ -449,9 +449,11 @@ void RosControl::set_pid_gains(const control::Params& params, CallResponse* r) {
     r->infos.push_back(where + ": joint '" + j.name + "' follows its position and velocity commands by this PID (" +
                        g.str() + "), its effort capped by the joint's effort limit");
   }
+  // Gazebo ignores them too; another plug-in may read them (roboticsgroup's MimicJointPlugin reads its mimic
+  // joint's gains there)
   for (const auto& n : named)
-    r->warnings.push_back("gazebo_ros_control: " + at + "/" + n + ": no transmission joint '" + n +
-                          "' in this robot; ignored");
+    r->infos.push_back("gazebo_ros_control: " + at + "/" + n + ": no transmission joint '" + n +
+                       "' in this robot: not gazebo_ros_control's (another plug-in may read them)");
 }
 
 void RosControl::post_physics(const StepContext& ctx, const RobotHandle& robot, OutputQueue* out) {
