@@ -8,18 +8,15 @@ import actionlib
 import rospy
 import rostest
 from control_msgs.msg import FollowJointTrajectoryAction, FollowJointTrajectoryGoal, FollowJointTrajectoryResult
-from controller_manager_msgs.srv import ListControllers, SwitchController
+from controller_manager_msgs.srv import SwitchController
 from sensor_msgs.msg import JointState
 from trajectory_msgs.msg import JointTrajectoryPoint
 
-from simtest import Recorder, call, sim_now, wait_for
+from simtest import controller_states, Recorder, call, sim_now, wait_for
 
 
 def states():
-    try:
-        return {c.name: c.state for c in call('/arm/controller_manager/list_controllers', ListControllers).controller}
-    except rospy.ServiceException:
-        return {}
+    return controller_states('/arm')
 
 
 class ControlArmTest(unittest.TestCase):

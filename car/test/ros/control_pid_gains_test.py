@@ -6,17 +6,13 @@ import unittest
 
 import rospy
 import rostest
-from controller_manager_msgs.srv import ListControllers
 from sensor_msgs.msg import JointState
 
-from simtest import Recorder, call, sim_now, wait_for
+from simtest import controller_states, Recorder, call, sim_now, wait_for
 
 
 def states():
-    try:
-        return {c.name: c.state for c in call('/arm/controller_manager/list_controllers', ListControllers).controller}
-    except rospy.ServiceException:
-        return {}
+    return controller_states('/arm')
 
 
 class ControlPidGainsTest(unittest.TestCase):

@@ -4,6 +4,7 @@ import threading
 
 import numpy as np
 import rospy
+from controller_manager_msgs.srv import ListControllers
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from std_srvs.srv import Empty
@@ -125,6 +126,15 @@ def command(v, w, topic='/cmd_vel'):
 def call(name, srv_type=Empty, *args):
     rospy.wait_for_service(name, timeout=30)
     return rospy.ServiceProxy(name, srv_type)(*args)
+
+
+def controller_states(ns):
+    """name -> state ("running", "stopped") of each controller of <ns>/controller_manager; {} while it does not
+    answer yet."""
+    try:
+        return {c.name: c.state for c in call(ns + '/controller_manager/list_controllers', ListControllers).controller}
+    except rospy.ServiceException:
+        return {}
 
 
 def sim_now():
